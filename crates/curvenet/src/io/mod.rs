@@ -1,0 +1,282 @@
+//! Reading and writing files: curve networks in (JSON, OBJ, `.net`), meshes out (OBJ, PLY,
+//! OFF) and back in. Formats are documented in the README ("Formats") and DESIGN §3–4; the
+//! format is chosen by the file extension.
+//!
+//! Every writer is atomic: it writes a temporary file beside the target and renames it, so a
+//! failed run never leaves a half-written file.
+
+mod json;
+mod mesh;
+mod net;
+mod obj;
+
+pub use mesh::{check_mesh_path, read_mesh, stage_mesh, write_mesh, MeshData, MeshFile};
+
+use crate::error::{Error, Result};
+use crate::network::Network;
+use std::io::Write;
+use std::path::Path;
+
+/// File formats for curve networks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NetworkFormat {
+    /// The reference JSON format (DESIGN §3).
+    Json,
+    /// Wavefront OBJ polylines: `v`, `vn` paired by index, `l`, group `boundary`.
+    Obj,
+    /// The `.net` format of the method's authors.
+    Net,
+}
+
+impl NetworkFormat {
+    /// The format for a file name's extension (case-insensitive), or a usage error.
+    pub fn from_path(path: &Path) -> Result<Self> {
+        let ext = extension(path);
+        match ext.as_str() {
+            "json" => Ok(Self::Json),
+            "obj" => Ok(Self::Obj),
+            "net" => Ok(Self::Net),
+            _ => Err(Error::Usage(format!(
+                "{}: unknown network format \".{ext}\"; use .json, .obj or .net",
+                path.display()
+            ))),
+        }
+    }
+}
+
+pub(crate) fn extension(path: &Path) -> String {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+/// Reads a curve network; the format comes from the extension. The network is returned as
+/// written in the file: call [`Network::validated`] (the pipeline does) to check its values.
+pub fn read_network(path: &Path) -> Result<Network> {
+    let format = NetworkFormat::from_path(path)?;
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let (line, column) = line_col(&e.as_bytes()[..e.utf8_error().valid_up_to()]);
+        Error::Parse {
+            path: path.display().to_string(),
+            line,
+            column,
+            message: "file is not valid UTF-8 text".into(),
+        }
+    })?;
+    parse_network(&text, format, &path.display().to_string())
+}
+
+/// Parses a curve network from text; `source` names it in error messages.
+pub fn parse_network(text: &str, format: NetworkFormat, source: &str) -> Result<Network> {
+    match format {
+        NetworkFormat::Json => json::parse(text, source),
+        NetworkFormat::Obj => obj::parse(text, source),
+        NetworkFormat::Net => net::parse(text, source),
+    }
+}
+
+/// Writes a curve network; the format comes from the extension. Atomic.
+pub fn write_network(path: &Path, network: &Network) -> Result<()> {
+    let format = NetworkFormat::from_path(path)?;
+    write_atomic(path, |w| match format {
+        NetworkFormat::Json => json::write(w, network),
+        NetworkFormat::Obj => obj::write(w, network),
+        NetworkFormat::Net => net::write(w, network),
+    })
+}
+
+/// 1-based line and column of the end of `prefix`.
+fn line_col(prefix: &[u8]) -> (usize, usize) {
+    let line = 1 + prefix.iter().filter(|&&b| b == b'\n').count();
+    let col = 1 + prefix.iter().rev().take_while(|&&b| b != b'\n').count();
+    (line, col)
+}
+
+/// A file written in full to a temporary name beside its target, not yet visible under the
+/// target name. [`Staged::commit`] renames it into place; dropping it uncommitted removes it.
+/// Staging several outputs and committing them together keeps a failed run from leaving some
+/// of them written.
+#[derive(Debug)]
+pub struct Staged {
+    tmp: std::path::PathBuf,
+    path: std::path::PathBuf,
+    done: bool,
+}
+
+impl Staged {
+    /// Writes through `body` into a temporary file beside `path`.
+    pub fn write(
+        path: &Path,
+        body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+    ) -> Result<Staged> {
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => std::path::PathBuf::from("."),
+        };
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
+        let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+        let staged = Staged {
+            tmp,
+            path: path.to_path_buf(),
+            done: false,
+        };
+        let result = (|| -> std::io::Result<()> {
+            let file = std::fs::File::create(&staged.tmp)?;
+            let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
+            body(&mut w)?;
+            w.flush()?;
+            w.into_inner().map_err(|e| e.into_error())?.sync_all().ok();
+            Ok(())
+        })();
+        result.map_err(|e| Error::io(path, e))?;
+        Ok(staged)
+    }
+
+    /// Moves the file to its target name.
+    pub fn commit(mut self) -> Result<()> {
+        std::fs::rename(&self.tmp, &self.path).map_err(|e| Error::io(&self.path, e))?;
+        self.done = true;
+        Ok(())
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        if !self.done {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}
+
+/// Writes through `body` into a temporary file beside `path`, then renames it onto `path`.
+/// On any error the temporary file is removed and `path` is left as it was.
+pub(crate) fn write_atomic(
+    path: &Path,
+    body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
+    Staged::write(path, body)?.commit()
+}
+
+/// Writes `text` to `path` atomically.
+pub fn write_text(path: &Path, text: &str) -> Result<()> {
+    write_atomic(path, |w| w.write_all(text.as_bytes()))
+}
+
+/// A line-oriented tokenizer for the text formats: yields `(line, column, token)` with
+/// 1-based positions, skipping `#` comments.
+pub(crate) struct Tokens<'a> {
+    pub line: usize,
+    rest: Vec<(usize, &'a str)>,
+}
+
+impl<'a> Tokens<'a> {
+    /// Splits one line (1-based `line`) into tokens with their columns.
+    pub fn of_line(line_no: usize, line: &'a str) -> Self {
+        let line = match line.find('#') {
+            Some(i) => &line[..i],
+            None => line,
+        };
+        let mut rest = Vec::new();
+        let bytes = line.as_bytes();
+        let mut i = 0;
+        while i < bytes.len() {
+            if bytes[i].is_ascii_whitespace() {
+                i += 1;
+                continue;
+            }
+            let start = i;
+            while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
+                i += 1;
+            }
+            rest.push((line[..start].chars().count() + 1, &line[start..i]));
+        }
+        rest.reverse();
+        Tokens {
+            line: line_no,
+            rest,
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.rest.is_empty()
+    }
+
+    pub fn next(&mut self) -> Option<(usize, &'a str)> {
+        self.rest.pop()
+    }
+
+    pub fn remaining(&self) -> usize {
+        self.rest.len()
+    }
+}
+
+pub(crate) fn parse_error(
+    source: &str,
+    line: usize,
+    column: usize,
+    message: impl Into<String>,
+) -> Error {
+    Error::Parse {
+        path: source.to_string(),
+        line,
+        column,
+        message: message.into(),
+    }
+}
+
+/// Parses a finite `f64` token; `what` names the value in the message.
+pub(crate) fn parse_f64(
+    source: &str,
+    line: usize,
+    col: usize,
+    tok: &str,
+    what: &str,
+) -> Result<f64> {
+    match tok.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(parse_error(
+            source,
+            line,
+            col,
+            format!("{what} \"{tok}\" is not a finite number"),
+        )),
+        Err(_) => Err(parse_error(
+            source,
+            line,
+            col,
+            format!("expected a number for {what}, found \"{tok}\""),
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tokens_have_columns() {
+        let mut t = Tokens::of_line(3, "v  1.0 x # comment");
+        assert_eq!(t.next(), Some((1, "v")));
+        assert_eq!(t.next(), Some((4, "1.0")));
+        assert_eq!(t.next(), Some((8, "x")));
+        assert_eq!(t.next(), None);
+    }
+
+    #[test]
+    fn atomic_write_leaves_nothing_on_failure() {
+        let dir = std::env::temp_dir().join(format!("curvenet-atomic-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("out.txt");
+        std::fs::write(&path, "old").unwrap();
+        let r = write_atomic(&path, |w| {
+            w.write_all(b"partial")?;
+            Err(std::io::Error::other("boom"))
+        });
+        assert!(r.is_err());
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

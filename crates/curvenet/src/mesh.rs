@@ -1,0 +1,45 @@
+//! The triangle mesh the pipeline builds and solves on.
+
+use crate::geom::{DVec2, DVec3};
+
+/// A triangle mesh whose first [`Mesh::num_curve`] vertices lie on the curve network.
+///
+/// Vertices `0..num_curve` are the resampled curve vertices (constrained); the others are the
+/// free vertices of the patches, patch by patch. Faces are counter-clockwise seen from outside
+/// (they agree with the input normals).
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    /// Vertex positions, `#V`. Curve vertices are exact; free vertices hold the lift of their
+    /// planar position until a method solves for them.
+    pub positions: Vec<DVec3>,
+    /// Triangles, `#F`.
+    pub faces: Vec<[u32; 3]>,
+    /// Number of curve vertices (they come first).
+    pub num_curve: usize,
+    /// Unit input normals at the curve vertices, `num_curve`.
+    pub curve_normals: Vec<DVec3>,
+    /// Per vertex: lies on a boundary curve (an open border of the surface), `#V`.
+    pub on_boundary: Vec<bool>,
+    /// Per face: corner coordinates in the plane its patch was triangulated in ([CG] §3.3);
+    /// the paper's cotangent weights come from these. `#F`.
+    pub planar: Vec<[DVec2; 3]>,
+    /// Per face: index of its patch. `#F`.
+    pub face_patch: Vec<u32>,
+}
+
+impl Mesh {
+    pub fn num_vertices(&self) -> usize {
+        self.positions.len()
+    }
+
+    pub fn num_free(&self) -> usize {
+        self.positions.len() - self.num_curve
+    }
+
+    /// `true` for curve vertices, `#V` (the PLY `curve` flag).
+    pub fn curve_flags(&self) -> Vec<bool> {
+        (0..self.positions.len())
+            .map(|i| i < self.num_curve)
+            .collect()
+    }
+}

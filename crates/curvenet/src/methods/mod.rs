@@ -1,0 +1,150 @@
+//! Surfacing methods: one module per paper or baseline.
+//!
+//! - [`normal_control`]: the journal paper's method ([CG] §3.4, eq. 1–3), with signed mean
+//!   curvature, hard or soft constraints ([CG] §4.5).
+//! - [`polyharmonic`]: the biharmonic `Δ²V = 0` and triharmonic `Δ³V = 0` baselines ([CG] §4.3).
+//!
+//! Every method solves for the free vertices with the curve vertices fixed (hard constraints
+//! eliminated), factoring each distinct system matrix once.
+
+pub mod normal_control;
+pub mod polyharmonic;
+
+use crate::geom::DVec3;
+use crate::sparse::Csc;
+use faer::Mat;
+
+/// Which surfacing method to run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Method {
+    /// [CG] eq. 1–3: propagate positions and normals, estimate the signed mean curvature,
+    /// fit `L V = −2 H N*`.
+    #[default]
+    NormalControl,
+    /// `Δ²V = 0` with the curve vertices fixed (positions only).
+    Biharmonic,
+    /// `Δ³V = 0` with the curve vertices fixed (positions only).
+    Triharmonic,
+}
+
+impl Method {
+    pub const ALL: [Method; 3] = [
+        Method::NormalControl,
+        Method::Biharmonic,
+        Method::Triharmonic,
+    ];
+
+    /// The name used on the command line and in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::NormalControl => "normal-control",
+            Method::Biharmonic => "biharmonic",
+            Method::Triharmonic => "triharmonic",
+        }
+    }
+
+    pub fn from_name(s: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == s)
+    }
+}
+
+/// How the terms of the normal-control energy are weighted (DESIGN §1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Weighting {
+    /// `Σ_v A_v ‖(LV)_v + 2H n*‖²`: the system matrix is `Ls M⁻¹ Ls`, the same as the
+    /// propagation's, so one factorisation serves both (closed surfaces).
+    #[default]
+    Area,
+    /// `Σ_v ‖(LV)_v + 2H n*‖²` as written in [CG] eq. 2 (matrix `Ls M⁻² Ls`).
+    Uniform,
+}
+
+impl Weighting {
+    pub fn name(self) -> &'static str {
+        match self {
+            Weighting::Area => "area",
+            Weighting::Uniform => "uniform",
+        }
+    }
+}
+
+/// What a method computed.
+#[derive(Clone, Debug, Default)]
+pub struct MethodResult {
+    /// Final vertex positions, `#V`.
+    pub positions: Vec<DVec3>,
+    /// Propagated unit normals `N*` (normal-control only), `#V`.
+    pub propagated_normals: Option<Vec<DVec3>>,
+    /// The signed mean-curvature guide `H` of [CG] eq. 1 (normal-control only), `#V`.
+    pub guide_curvature: Option<Vec<f64>>,
+}
+
+/// Wall-clock seconds spent in the numerical stages (added to by the methods).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SolveTimings {
+    pub operators: f64,
+    pub factor: f64,
+    pub solve: f64,
+}
+
+/// `n × k` dense matrix with the rows of the known (curve) vertices `0..first` taken from
+/// `cols` and zeros elsewhere: `X̃` of the eliminated systems.
+pub(crate) fn known_rows(n: usize, first: usize, cols: &[&[DVec3]]) -> Mat<f64> {
+    let mut x = Mat::<f64>::zeros(n, 3 * cols.len());
+    for (c, vals) in cols.iter().enumerate() {
+        for i in 0..first {
+            let v = vals[i];
+            x[(i, 3 * c)] = v.x;
+            x[(i, 3 * c + 1)] = v.y;
+            x[(i, 3 * c + 2)] = v.z;
+        }
+    }
+    x
+}
+
+/// Right-hand side of the weighted least-squares system `min Σ_k w_k ‖(Ls X)_k − b_k‖²` on the
+/// unknown rows `first..`: `(Ls diag(w) (b − Ls X̃))_u`, where `X̃` holds the known rows.
+pub(crate) fn weighted_rhs(
+    ls: &Csc,
+    w: &[f64],
+    target: Option<&Mat<f64>>,
+    known: &Mat<f64>,
+    first: usize,
+) -> Mat<f64> {
+    let n = ls.nrows;
+    let k = known.ncols();
+    let mut y = Mat::<f64>::zeros(n, k);
+    ls.mul_dense(known.as_ref(), y.as_mut());
+    for c in 0..k {
+        for i in 0..n {
+            let b = target.map_or(0.0, |t| t[(i, c)]);
+            y[(i, c)] = w[i] * (b - y[(i, c)]);
+        }
+    }
+    let mut z = Mat::<f64>::zeros(n, k);
+    ls.mul_dense(y.as_ref(), z.as_mut());
+    let mut out = Mat::<f64>::zeros(n - first, k);
+    for c in 0..k {
+        for i in first..n {
+            out[(i - first, c)] = z[(i, c)];
+        }
+    }
+    out
+}
+
+/// Copies 3 columns starting at `col` of the solution (rows = unknowns `first..`) into
+/// `positions[first..]`.
+pub(crate) fn scatter(sol: &Mat<f64>, col: usize, first: usize, out: &mut [DVec3]) {
+    for i in 0..sol.nrows() {
+        out[first + i] = DVec3::new(sol[(i, col)], sol[(i, col + 1)], sol[(i, col + 2)]);
+    }
+}
+
+pub(crate) fn check_finite(p: &[DVec3], what: &str) -> crate::error::Result<()> {
+    if let Some(i) = p.iter().position(|v| !v.is_finite()) {
+        return Err(crate::error::Error::Numerical(format!(
+            "{what}: vertex {i} is not finite; the system is ill-conditioned"
+        )));
+    }
+    Ok(())
+}

@@ -1,0 +1,183 @@
+//! Normal-controlled surfacing ([CG] §3.4): propagate positions and normals from the curves,
+//! estimate the signed mean curvature from both (eq. 1), and find the surface whose Laplacian
+//! best matches the mean-curvature vectors (eq. 2–3), with hard or soft ([CG] §4.5) curve
+//! constraints.
+//!
+//! 1. Propagation: `L² V* = 0`, `L² N* = 0` on the free vertices, curve vertices fixed; in
+//!    symmetric form `(Ls M⁻¹ Ls)_ff X_f = −(Ls M⁻¹ Ls)_fc X_c`, one factorisation for the six
+//!    columns; `N*` normalised.
+//! 2. Guide: `H(v) = h(v) · n*(v)` with `h` from eq. 1 on `(V*, N*)` (signed, DESIGN §1).
+//! 3. Final solve: `min Σ_v w_v ‖(Ls V)_v − b_v‖²`, `b_v = −2 A_v H_v n*_v` (that is
+//!    `L V = −2 H N*`), with `w_v = 1/A_v` (area-weighted, DESIGN §1) or `1/A_v²` ([CG] eq. 2
+//!    as written). Rows of open-boundary vertices are left out (their one-sided Laplacian is
+//!    not a curvature). With the area weighting and no open boundary the matrix is the
+//!    propagation's, and its factorisation is reused.
+//! 4. Soft constraints ([CG] §4.5): `+ ω_s Σ_{s ∈ curve} ‖v_s − v*_s‖²`, all vertices unknown.
+
+use super::{
+    check_finite, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings, Weighting,
+};
+use crate::error::{Error, Result};
+use crate::geom::{fmt_point, DVec3};
+use crate::mesh::Mesh;
+use crate::operators::{blended_mean_curvature, Operators};
+use crate::solve::Cholesky;
+use crate::sparse::product;
+use faer::Mat;
+use std::time::Instant;
+
+/// Parameters of one normal-control solve.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NormalControlParams {
+    pub weighting: Weighting,
+    /// Soft-constraint weight `ω_s` per curve vertex, already scaled (see
+    /// [`crate::Options::soft`]); `None` for hard constraints.
+    pub soft_weight: Option<f64>,
+}
+
+/// Runs the method on `mesh` with the operators `ops` (planar or surface metric).
+pub fn normal_control(
+    mesh: &Mesh,
+    ops: &Operators,
+    params: &NormalControlParams,
+    t: &mut SolveTimings,
+) -> Result<MethodResult> {
+    let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
+    let mut v_star = mesh.positions.clone();
+    let mut n_star: Vec<DVec3> = mesh.curve_normals.clone();
+    n_star.resize(n, DVec3::ZERO);
+
+    // 1. Propagation.
+    let clock = Instant::now();
+    let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
+    let mut prop: Option<Cholesky> = None;
+    if n > nc {
+        let q = product(&ops.ls, &inv_m, &ops.ls, nc);
+        let known = known_rows(n, nc, &[&mesh.positions, &mesh.curve_normals]);
+        let rhs = weighted_rhs(&ops.ls, &inv_m, None, &known, nc);
+        t.operators += clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let chol = Cholesky::factor(&q, "propagation system (L² V* = 0)")?;
+        t.factor += clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let mut sol = rhs;
+        chol.solve_in_place(sol.as_mut());
+        scatter(&sol, 0, nc, &mut v_star);
+        scatter(&sol, 3, nc, &mut n_star);
+        t.solve += clock.elapsed().as_secs_f64();
+        prop = Some(chol);
+        for i in nc..n {
+            let u = n_star[i].normalize_or_zero();
+            if u == DVec3::ZERO || !u.is_finite() {
+                return Err(Error::Numerical(format!(
+                    "the propagated normal vanishes at vertex {i} near {}: the input normals around it cancel out \
+                     (check that they all point outward)",
+                    fmt_point(v_star[i])
+                )));
+            }
+            n_star[i] = u;
+        }
+    }
+    check_finite(&v_star, "propagation")?;
+
+    // 2. Mean-curvature guide (signed).
+    let clock = Instant::now();
+    let h = blended_mean_curvature(&mesh.faces, &v_star, &n_star, &mesh.on_boundary);
+    if let Some(i) = h.iter().position(|x| !x.is_finite()) {
+        return Err(Error::Numerical(format!(
+            "the mean-curvature guide is not finite at vertex {i} (a degenerate triangle?)"
+        )));
+    }
+
+    // 3. Final solve.
+    let any_boundary = mesh.on_boundary.iter().any(|&b| b);
+    let w: Vec<f64> = (0..n)
+        .map(|k| {
+            if mesh.on_boundary[k] {
+                0.0
+            } else {
+                match params.weighting {
+                    Weighting::Area => inv_m[k],
+                    Weighting::Uniform => inv_m[k] * inv_m[k],
+                }
+            }
+        })
+        .collect();
+    let mut b = Mat::<f64>::zeros(n, 3);
+    for k in 0..n {
+        let s = -2.0 * ops.mass[k] * h[k];
+        b[(k, 0)] = s * n_star[k].x;
+        b[(k, 1)] = s * n_star[k].y;
+        b[(k, 2)] = s * n_star[k].z;
+    }
+    let mut positions = mesh.positions.clone();
+    match params.soft_weight {
+        None => {
+            if n == nc {
+                t.operators += clock.elapsed().as_secs_f64();
+                return Ok(MethodResult {
+                    positions,
+                    propagated_normals: Some(n_star),
+                    guide_curvature: Some(h),
+                });
+            }
+            let known = known_rows(n, nc, &[&mesh.positions]);
+            let rhs = weighted_rhs(&ops.ls, &w, Some(&b), &known, nc);
+            let reuse = params.weighting == Weighting::Area && !any_boundary && prop.is_some();
+            let q = if reuse {
+                None
+            } else {
+                Some(product(&ops.ls, &w, &ops.ls, nc))
+            };
+            t.operators += clock.elapsed().as_secs_f64();
+            let clock = Instant::now();
+            let own;
+            let chol = match (q, prop.as_ref()) {
+                (Some(q), _) => {
+                    own = Cholesky::factor(&q, "final system (L V = −2 H N*)")?;
+                    &own
+                }
+                (None, Some(p)) => p,
+                (None, None) => {
+                    return Err(Error::Numerical(
+                        "internal: no factorisation to reuse".into(),
+                    ))
+                }
+            };
+            t.factor += clock.elapsed().as_secs_f64();
+            let clock = Instant::now();
+            let mut sol = rhs;
+            chol.solve_in_place(sol.as_mut());
+            scatter(&sol, 0, nc, &mut positions);
+            t.solve += clock.elapsed().as_secs_f64();
+        }
+        Some(omega) => {
+            // All vertices unknown; curve vertices pulled towards their input positions.
+            let mut q = product(&ops.ls, &w, &ops.ls, 0);
+            let mut diag = vec![0.0; n];
+            diag[..nc].iter_mut().for_each(|d| *d = omega);
+            q.add_diagonal(&diag);
+            let mut rhs = weighted_rhs(&ops.ls, &w, Some(&b), &Mat::<f64>::zeros(n, 3), 0);
+            for (k, p) in mesh.positions[..nc].iter().enumerate() {
+                rhs[(k, 0)] += omega * p.x;
+                rhs[(k, 1)] += omega * p.y;
+                rhs[(k, 2)] += omega * p.z;
+            }
+            t.operators += clock.elapsed().as_secs_f64();
+            let clock = Instant::now();
+            let chol = Cholesky::factor(&q, "soft-constrained system")?;
+            t.factor += clock.elapsed().as_secs_f64();
+            let clock = Instant::now();
+            let mut sol = rhs;
+            chol.solve_in_place(sol.as_mut());
+            scatter(&sol, 0, 0, &mut positions);
+            t.solve += clock.elapsed().as_secs_f64();
+        }
+    }
+    check_finite(&positions, "final solve")?;
+    Ok(MethodResult {
+        positions,
+        propagated_normals: Some(n_star),
+        guide_curvature: Some(h),
+    })
+}

@@ -1,0 +1,76 @@
+//! The biharmonic and triharmonic baselines ([CG] §4.3, Table 1; [EG] Fig. 2): `Δ²V = 0` or
+//! `Δ³V = 0` on the free vertices with the curve vertices fixed.
+//!
+//! Written in symmetric form (multiplying the rows by `M`): `(Ls M⁻¹ Ls)_ff V_f = −(Ls M⁻¹
+//! Ls)_fc V_c` and, for `Δ³`, the matrix `−Ls M⁻¹ Ls M⁻¹ Ls` — the same systems as libigl's
+//! `harmonic(V, F, b, bc, k)` for the cotangent Laplacian.
+
+use super::{check_finite, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings};
+use crate::error::Result;
+use crate::mesh::Mesh;
+use crate::operators::Operators;
+use crate::solve::Cholesky;
+use crate::sparse::product;
+use std::time::Instant;
+
+/// Solves `Δᵏ V = 0` (`order` 2 or 3) for the free vertices of `mesh`.
+pub fn polyharmonic(
+    mesh: &Mesh,
+    ops: &Operators,
+    order: usize,
+    t: &mut SolveTimings,
+) -> Result<MethodResult> {
+    let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
+    let mut positions = mesh.positions.clone();
+    if n == nc {
+        return Ok(MethodResult {
+            positions,
+            ..Default::default()
+        });
+    }
+    let clock = Instant::now();
+    let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
+    let known = known_rows(n, nc, &[&mesh.positions]);
+    let (q, rhs) = if order == 2 {
+        (
+            product(&ops.ls, &inv_m, &ops.ls, nc),
+            weighted_rhs(&ops.ls, &inv_m, None, &known, nc),
+        )
+    } else {
+        // T = Ls M⁻¹ Ls; Q₃ = −Ls M⁻¹ T; rhs = −(Q₃ X̃)_f = (Ls M⁻¹ T X̃)_f.
+        let tt = crate::sparse::product(&ops.ls, &inv_m, &ops.ls, 0);
+        let neg: Vec<f64> = inv_m.iter().map(|x| -x).collect();
+        let q3 = product(&ops.ls, &neg, &tt, nc);
+        let mut y = faer::Mat::<f64>::zeros(n, 3);
+        tt.mul_dense(known.as_ref(), y.as_mut());
+        let rhs = weighted_rhs(
+            &ops.ls,
+            &inv_m,
+            Some(&y),
+            &faer::Mat::<f64>::zeros(n, 3),
+            nc,
+        );
+        (q3, rhs)
+    };
+    t.operators += clock.elapsed().as_secs_f64();
+    let clock = Instant::now();
+    let chol = Cholesky::factor(
+        &q,
+        if order == 2 {
+            "biharmonic system"
+        } else {
+            "triharmonic system"
+        },
+    )?;
+    t.factor += clock.elapsed().as_secs_f64();
+    let clock = Instant::now();
+    let mut sol = rhs;
+    chol.solve_in_place(sol.as_mut());
+    scatter(&sol, 0, nc, &mut positions);
+    t.solve += clock.elapsed().as_secs_f64();
+    check_finite(&positions, "polyharmonic solve")?;
+    Ok(MethodResult {
+        positions,
+        ..Default::default()
+    })
+}

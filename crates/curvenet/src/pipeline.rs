@@ -1,0 +1,399 @@
+//! The whole pipeline, network in, surface out ([CG] §3.1; DESIGN §1): validate, find nodes,
+//! fit splines, trace the cycles, pick the spacing, resample, tessellate, solve.
+
+use crate::curves::{resample_network, CurveSpline};
+use crate::error::{Error, Result, Warning};
+use crate::geom::DVec3;
+use crate::io::MeshData;
+use crate::mesh::Mesh;
+use crate::methods::normal_control::{normal_control, NormalControlParams};
+use crate::methods::polyharmonic::polyharmonic;
+use crate::methods::{Method, MethodResult, SolveTimings, Weighting};
+use crate::network::Network;
+use crate::operators::{cotan_mean_curvature, cotan_operators, vertex_normals, Metric};
+use crate::tessellate::{tessellate, VERTICES_PER_AREA};
+use crate::topology::cycles::half_edge_samples;
+use crate::topology::{find_nodes, find_patches, Graph, Patch};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Options of a surfacing run. Each field maps one-to-one onto a command-line flag.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// `--method`: the surfacing method. Default: [`Method::NormalControl`].
+    pub method: Method,
+    /// `--spacing D`: target edge length `d` of the mesh (and curve sampling distance).
+    /// Overrides `vertices`.
+    pub spacing: Option<f64>,
+    /// `--vertices N`: approximate total vertex count, used when `spacing` is not given.
+    /// Default: [`Options::DEFAULT_VERTICES`].
+    pub vertices: Option<usize>,
+    /// `--soft W`: soft curve constraints with weight `W` ([CG] §4.5) instead of hard ones
+    /// (normal-control only). The penalty is `W · (d / ℓ³) Σ_s ‖v_s − v*_s‖²` with `d` the
+    /// spacing and `ℓ` the network's bounding-box diagonal, which makes `W` independent of the
+    /// scale and of the resolution: `W ≈ 10²–10³` filters noise at the sampling scale, larger
+    /// values approach hard constraints.
+    pub soft: Option<f64>,
+    /// `--weights`: where cotangent weights and areas are measured. [`Metric::Planar`] (the
+    /// paper) or [`Metric::Surface`] (one more solve with weights from the first result).
+    pub weights: Metric,
+    /// `--energy`: weighting of the normal-control energy (DESIGN §1). Default: area.
+    pub energy: Weighting,
+    /// `--snap S`: snapping tolerance for curves meeting between samples; overrides the
+    /// network's `snap`. Default: 1e-3 × the bounding-box diagonal.
+    pub snap: Option<f64>,
+}
+
+impl Options {
+    /// Default approximate vertex count.
+    pub const DEFAULT_VERTICES: usize = 20_000;
+    /// Largest mesh a run may create (a guard against a mistyped spacing).
+    pub const MAX_VERTICES: f64 = 5e7;
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            method: Method::NormalControl,
+            spacing: None,
+            vertices: None,
+            soft: None,
+            weights: Metric::Planar,
+            energy: Weighting::Area,
+            snap: None,
+        }
+    }
+}
+
+/// Seconds per stage (DESIGN §5; the names are stable: benchmarks read them).
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct Timings {
+    pub read: f64,
+    pub nodes: f64,
+    pub resample: f64,
+    pub cycles: f64,
+    pub tessellate: f64,
+    pub operators: f64,
+    pub factor: f64,
+    pub solve: f64,
+    pub write: f64,
+    pub total: f64,
+}
+
+/// Statistics of a run (DESIGN §5, written by `--stats`).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Stats {
+    pub vertices: usize,
+    pub faces: usize,
+    pub curve_vertices: usize,
+    pub cycles: usize,
+    pub components: usize,
+    pub nodes: usize,
+    pub segments: usize,
+    pub spacing: f64,
+    pub method: String,
+    pub timings: Timings,
+}
+
+/// The result of a surfacing run.
+#[derive(Clone, Debug)]
+pub struct Surface {
+    /// The mesh with its final positions; vertices `0..mesh.num_curve` lie on the curves.
+    pub mesh: Mesh,
+    /// Unit vertex normals of the final mesh.
+    pub normals: Vec<DVec3>,
+    /// Signed mean curvature of the final mesh (cotangent formula; 0 on open boundaries).
+    pub mean_curvature: Vec<f64>,
+    /// The propagated normals `N*` (normal-control only).
+    pub propagated_normals: Option<Vec<DVec3>>,
+    pub curve_flags: Vec<bool>,
+    pub stats: Stats,
+    pub warnings: Vec<Warning>,
+}
+
+impl Surface {
+    /// The mesh and its attributes, for [`crate::io::write_mesh`].
+    pub fn mesh_data(&self) -> MeshData<'_> {
+        MeshData {
+            positions: &self.mesh.positions,
+            faces: &self.mesh.faces,
+            normals: Some(&self.normals),
+            mean_curvature: Some(&self.mean_curvature),
+            curve_vertex: Some(&self.curve_flags),
+        }
+    }
+}
+
+/// Surfaces `network` with `options`. See [`surface_with_progress`].
+pub fn surface(network: &Network, options: &Options) -> Result<Surface> {
+    surface_with_progress(network, options, &mut |_, _, _| {})
+}
+
+/// Number of connected components of the segment graph.
+fn components(g: &Graph) -> usize {
+    let mut parent: Vec<usize> = (0..g.nodes.len()).collect();
+    fn find(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for s in &g.segments {
+        let (a, b) = (find(&mut parent, s.start), find(&mut parent, s.end));
+        parent[a.max(b)] = a.min(b);
+    }
+    (0..g.nodes.len())
+        .filter(|&i| find(&mut parent, i) == i)
+        .count()
+}
+
+/// Sizes that predict the vertex count: free vertices ≈ `c A / d²` over the patches' projected
+/// area `A`, curve vertices ≈ `ℓ / d` over the segments' length `ℓ`.
+struct SizeModel {
+    area: f64,
+    length: f64,
+}
+
+impl SizeModel {
+    fn new(g: &Graph, splines: &[CurveSpline], patches: &[Patch]) -> Self {
+        let length: f64 = g
+            .segments
+            .iter()
+            .map(|s| splines[s.curve].arc_between(s.first, s.last))
+            .sum();
+        let samples = |hs: &[crate::topology::HalfEdge]| -> Vec<DVec3> {
+            hs.iter()
+                .flat_map(|&h| half_edge_samples(g, h))
+                .map(|x| x.0)
+                .collect()
+        };
+        let area: f64 = patches
+            .iter()
+            .map(|p| match p {
+                Patch::Disk(hs) => crate::geom::polygon_vector_area(&samples(hs)).length(),
+                Patch::Tube([a, b]) => {
+                    let (la, lb) = (samples(a), samples(b));
+                    let len = |v: &[DVec3]| {
+                        (0..v.len())
+                            .map(|i| v[i].distance(v[(i + 1) % v.len()]))
+                            .sum::<f64>()
+                    };
+                    let c = |v: &[DVec3]| v.iter().sum::<DVec3>() / v.len() as f64;
+                    0.5 * (len(&la) + len(&lb)) * c(&la).distance(c(&lb))
+                }
+            })
+            .sum();
+        SizeModel {
+            area: VERTICES_PER_AREA * area,
+            length,
+        }
+    }
+
+    fn vertices(&self, d: f64) -> f64 {
+        self.area / (d * d) + self.length / d
+    }
+
+    /// The spacing that gives about `target` vertices (`n = c A x² + ℓ x`, `x = 1/d`).
+    fn spacing(&self, target: usize) -> f64 {
+        let (ca, l, n) = (self.area, self.length, target.max(10) as f64);
+        let x = if ca > 0.0 {
+            (-l + (l * l + 4.0 * ca * n).sqrt()) / (2.0 * ca)
+        } else {
+            n / l
+        };
+        1.0 / x
+    }
+}
+
+/// Surfaces `network`, reporting each finished stage to `progress(stage, seconds, detail)`.
+pub fn surface_with_progress(
+    network: &Network,
+    options: &Options,
+    progress: &mut dyn FnMut(&str, f64, &str),
+) -> Result<Surface> {
+    let start = Instant::now();
+    let mut timings = Timings::default();
+    if let Some(d) = options.spacing {
+        if !(d.is_finite() && d > 0.0) {
+            return Err(Error::Usage(format!(
+                "spacing {d} is not a positive distance"
+            )));
+        }
+    }
+    if options.vertices == Some(0) {
+        return Err(Error::Usage("the vertex count must be positive".into()));
+    }
+    if let Some(w) = options.soft {
+        if !(w.is_finite() && w > 0.0) {
+            return Err(Error::Usage(format!(
+                "soft-constraint weight {w} is not a positive number"
+            )));
+        }
+        if options.method != Method::NormalControl {
+            return Err(Error::Usage(format!(
+                "--soft applies to normal-control only, not to {}",
+                options.method.name()
+            )));
+        }
+    }
+    if let Some(s) = options.snap {
+        if !(s.is_finite() && s > 0.0) {
+            return Err(Error::Usage(format!(
+                "snapping tolerance {s} is not a positive distance"
+            )));
+        }
+    }
+
+    // Nodes and segments.
+    let clock = Instant::now();
+    let (net, mut warnings) = network.validated()?;
+    let snap = options
+        .snap
+        .or(net.snap)
+        .unwrap_or_else(|| net.snap_tolerance());
+    let (g, w) = find_nodes(&net, snap)?;
+    warnings.extend(w);
+    timings.nodes = clock.elapsed().as_secs_f64();
+    progress(
+        "nodes",
+        timings.nodes,
+        &format!("{} nodes, {} segments", g.nodes.len(), g.segments.len()),
+    );
+
+    // Splines (needed for the tangents at nodes) and cycles.
+    let clock = Instant::now();
+    let splines: Vec<CurveSpline> = g
+        .curves
+        .par_iter()
+        .map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed))
+        .collect();
+    let spline_time = clock.elapsed().as_secs_f64();
+    let clock = Instant::now();
+    let patches = find_patches(&g, &splines)?;
+    timings.cycles = clock.elapsed().as_secs_f64();
+    progress(
+        "cycles",
+        timings.cycles,
+        &format!("{} patches", patches.len()),
+    );
+
+    // Spacing and resampling.
+    let clock = Instant::now();
+    let size = SizeModel::new(&g, &splines, &patches);
+    let d = match options.spacing {
+        Some(d) => d,
+        None => size.spacing(options.vertices.unwrap_or(Options::DEFAULT_VERTICES)),
+    };
+    let estimate = size.vertices(d);
+    if estimate > Options::MAX_VERTICES {
+        return Err(Error::Usage(format!(
+            "spacing {d:.3e} would create about {estimate:.2e} vertices (limit {:.0e}); give a larger --spacing or a smaller --vertices",
+            Options::MAX_VERTICES
+        )));
+    }
+    let res = resample_network(&g, &splines, d);
+    timings.resample = spline_time + clock.elapsed().as_secs_f64();
+    progress(
+        "resample",
+        timings.resample,
+        &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()),
+    );
+
+    let clock = Instant::now();
+    let mesh = tessellate(&g, &res, &patches, d)?;
+    timings.tessellate = clock.elapsed().as_secs_f64();
+    progress(
+        "tessellate",
+        timings.tessellate,
+        &format!(
+            "{} vertices, {} faces",
+            mesh.num_vertices(),
+            mesh.faces.len()
+        ),
+    );
+
+    // Solve.
+    let mut st = SolveTimings::default();
+    let ell = net.bounding_box().diagonal();
+    let run = |metric_positions: &[DVec3],
+               metric: Metric,
+               st: &mut SolveTimings|
+     -> Result<MethodResult> {
+        let clock = Instant::now();
+        let ops = cotan_operators(&mesh, metric, metric_positions);
+        st.operators += clock.elapsed().as_secs_f64();
+        if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
+            return Err(Error::Numerical(format!(
+                "vertex {i} has zero area: degenerate triangles around it"
+            )));
+        }
+        match options.method {
+            Method::NormalControl => {
+                let soft_weight = options.soft.map(|w| {
+                    let base = w * d / (ell * ell * ell);
+                    match options.energy {
+                        Weighting::Area => base,
+                        Weighting::Uniform => {
+                            base * ops.mass.len() as f64 / ops.mass.iter().sum::<f64>()
+                        }
+                    }
+                });
+                normal_control(
+                    &mesh,
+                    &ops,
+                    &NormalControlParams {
+                        weighting: options.energy,
+                        soft_weight,
+                    },
+                    st,
+                )
+            }
+            Method::Biharmonic => polyharmonic(&mesh, &ops, 2, st),
+            Method::Triharmonic => polyharmonic(&mesh, &ops, 3, st),
+        }
+    };
+    let mut result = run(&mesh.positions, Metric::Planar, &mut st)?;
+    if options.weights == Metric::Surface {
+        result = run(&result.positions, Metric::Surface, &mut st)?;
+    }
+    timings.operators = st.operators;
+    timings.factor = st.factor;
+    timings.solve = st.solve;
+    progress(
+        "solve",
+        st.operators + st.factor + st.solve,
+        options.method.name(),
+    );
+
+    let clock = Instant::now();
+    let mut mesh = mesh;
+    mesh.positions = result.positions;
+    let normals = vertex_normals(&mesh.faces, &mesh.positions);
+    let mean_curvature = cotan_mean_curvature(&mesh.faces, &mesh.positions, &mesh.on_boundary);
+    timings.operators += clock.elapsed().as_secs_f64();
+    timings.total = start.elapsed().as_secs_f64();
+    let stats = Stats {
+        vertices: mesh.num_vertices(),
+        faces: mesh.faces.len(),
+        curve_vertices: mesh.num_curve,
+        cycles: patches.len(),
+        components: components(&g),
+        nodes: g.nodes.len(),
+        segments: g.segments.len(),
+        spacing: d,
+        method: options.method.name().to_string(),
+        timings,
+    };
+    let curve_flags = mesh.curve_flags();
+    Ok(Surface {
+        mesh,
+        normals,
+        mean_curvature,
+        propagated_normals: result.propagated_normals,
+        curve_flags,
+        stats,
+        warnings,
+    })
+}

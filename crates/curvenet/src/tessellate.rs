@@ -1,0 +1,403 @@
+//! Tessellation of the patches ([CG] §3.3): each cycle is projected on the plane through its
+//! mean point with its mean normal and triangulated there by a quality constrained Delaunay
+//! triangulation (spade: minimum angle ≥ 25°, target edge ≈ `d`, no new points on the
+//! boundary). A tube patch (two facing boundary loops) is unrolled along a seam onto a
+//! trapezoidal strip instead (an annulus domain cut open). All patches are merged into one
+//! [`Mesh`] that shares the curve vertices; the per-face planar coordinates are kept for the
+//! paper's planar cotangent weights.
+
+use crate::curves::Resampled;
+use crate::error::{Error, Result};
+use crate::geom::{fmt_point, plane_frame, polygon_signed_area, polygon_vector_area, DVec2, DVec3};
+use crate::mesh::Mesh;
+use crate::topology::{Graph, HalfEdge, Patch};
+use rayon::prelude::*;
+use spade::{
+    AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
+};
+
+/// Minimum angle the refinement aims for, in degrees.
+pub const MIN_ANGLE_DEG: f64 = 25.0;
+/// Maximum triangle area as a multiple of `d²` (an equilateral triangle of side `d` has
+/// 0.433 d²; refinement stops once every triangle is below the limit, so the mean edge comes
+/// out close to `d`).
+pub const MAX_AREA_FACTOR: f64 = 0.69;
+/// Free vertices per unit planar area, times `d²`, that the refinement produces (measured;
+/// used to turn a target vertex count into a spacing).
+pub const VERTICES_PER_AREA: f64 = 1.08;
+
+/// A vertex of a patch triangulation: a curve vertex (global id) or a new free vertex of the
+/// patch (local id).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum VRef {
+    Curve(u32),
+    New(u32),
+}
+
+struct PatchMesh {
+    new_positions: Vec<DVec3>,
+    triangles: Vec<[VRef; 3]>,
+    planar: Vec<[DVec2; 3]>,
+}
+
+/// Curve vertex ids around one loop of half-edges (each node once).
+fn loop_vertices(res: &Resampled, hs: &[HalfEdge]) -> Vec<u32> {
+    let mut ids = Vec::new();
+    for h in hs {
+        let sv = &res.segment_vertices[h.segment];
+        if h.forward {
+            ids.extend_from_slice(&sv[..sv.len() - 1]);
+        } else {
+            ids.extend(sv[1..].iter().rev());
+        }
+    }
+    ids
+}
+
+fn describe_patch(g: &Graph, hs: &[HalfEdge]) -> String {
+    let mut curves: Vec<&str> = hs
+        .iter()
+        .map(|h| g.labels[g.segments[h.segment].curve].as_str())
+        .collect();
+    curves.dedup();
+    let mut s = curves.join(", ");
+    if s.len() > 200 {
+        s.truncate(200);
+        s.push('…');
+    }
+    s
+}
+
+/// Triangulates a planar polygon (`boundary[i]` at `pts[i]`, counter-clockwise) plus an
+/// optional set of vertex identifications, refining to spacing `d`.
+fn triangulate(
+    pts: Vec<DVec2>,
+    map: Vec<VRef>,
+    d: f64,
+    what: &dyn Fn() -> String,
+) -> Result<(Vec<[usize; 3]>, Vec<DVec2>, Vec<VRef>)> {
+    let n = pts.len();
+    if n < 3 {
+        return Err(Error::Topology(format!(
+            "{}: a patch needs at least 3 boundary vertices",
+            what()
+        )));
+    }
+    let area = polygon_signed_area(&pts);
+    if !(area > 0.0) {
+        return Err(Error::Topology(format!(
+            "{}: the cycle runs clockwise (or encloses no area) when projected on its plane; \
+             the projection folds over or the normals disagree with the cycle",
+            what()
+        )));
+    }
+    let vertices: Vec<Point2<f64>> = pts.iter().map(|p| Point2::new(p.x, p.y)).collect();
+    let edges: Vec<[usize; 2]> = (0..n).map(|i| [i, (i + 1) % n]).collect();
+    let mut conflict = None;
+    let cdt =
+        ConstrainedDelaunayTriangulation::<Point2<f64>>::try_bulk_load_cdt(vertices, edges, |e| {
+            conflict.get_or_insert(e);
+        });
+    let mut cdt = cdt.map_err(|e| {
+        Error::Topology(format!(
+            "{}: the projected cycle cannot be triangulated ({e:?})",
+            what()
+        ))
+    })?;
+    if cdt.num_vertices() != n {
+        return Err(Error::Topology(format!(
+            "{}: two boundary vertices fall on the same point when projected on the patch's plane \
+             (the cycle folds over in projection)",
+            what()
+        )));
+    }
+    if let Some([a, _]) = conflict {
+        return Err(Error::Topology(format!(
+            "{}: the cycle crosses itself when projected on its plane (near boundary vertex {a} at ({:.4}, {:.4})); \
+             the patch is too deep or twisted for a planar projection: add a curve that splits it",
+            what(),
+            pts[a].x,
+            pts[a].y
+        )));
+    }
+    let max_area = MAX_AREA_FACTOR * d * d;
+    let expected = (area / max_area * 4.0) as usize + 4 * n + 1000;
+    let result = cdt.refine(
+        RefinementParameters::<f64>::new()
+            .with_angle_limit(AngleLimit::from_deg(MIN_ANGLE_DEG))
+            .with_max_allowed_area(max_area)
+            .keep_constraint_edges()
+            .exclude_outer_faces(true)
+            .with_max_additional_vertices(expected),
+    );
+    if !result.refinement_complete {
+        return Err(Error::Numerical(format!(
+            "{}: the quality triangulation did not finish within {expected} new vertices \
+             (very small angles between curves at a node?)",
+            what()
+        )));
+    }
+    let mut excluded = vec![false; cdt.num_all_faces()];
+    for f in &result.excluded_faces {
+        excluded[f.index()] = true;
+    }
+    let positions: Vec<DVec2> = cdt
+        .vertices()
+        .map(|v| DVec2::new(v.position().x, v.position().y))
+        .collect();
+    let mut map = map;
+    let mut tris = Vec::with_capacity(cdt.num_inner_faces());
+    for f in cdt.inner_faces() {
+        if excluded[f.fix().index()] {
+            continue;
+        }
+        let v = f.vertices();
+        tris.push([v[0].fix().index(), v[1].fix().index(), v[2].fix().index()]);
+    }
+    // Refinement vertices are appended after the input ones.
+    let mut next_new = map
+        .iter()
+        .filter_map(|m| {
+            if let VRef::New(k) = m {
+                Some(*k + 1)
+            } else {
+                None
+            }
+        })
+        .max()
+        .unwrap_or(0);
+    let mut new_of: Vec<Option<VRef>> = vec![None; positions.len()];
+    for t in &tris {
+        for &i in t {
+            if i >= n && new_of[i].is_none() {
+                new_of[i] = Some(VRef::New(next_new));
+                next_new += 1;
+            }
+        }
+    }
+    map.extend((n..positions.len()).map(|i| new_of[i].unwrap_or(VRef::New(u32::MAX))));
+    Ok((tris, positions, map))
+}
+
+fn collect(
+    tris: Vec<[usize; 3]>,
+    pos2: &[DVec2],
+    map: &[VRef],
+    lift: impl Fn(DVec2) -> DVec3,
+    what: &dyn Fn() -> String,
+) -> Result<PatchMesh> {
+    let num_new = map
+        .iter()
+        .filter_map(|m| {
+            if let VRef::New(k) = m {
+                (*k != u32::MAX).then_some(*k as usize + 1)
+            } else {
+                None
+            }
+        })
+        .max()
+        .unwrap_or(0);
+    let mut new_positions = vec![DVec3::ZERO; num_new];
+    let mut seen = vec![false; num_new];
+    for (i, m) in map.iter().enumerate() {
+        if let VRef::New(k) = *m {
+            if k != u32::MAX && !seen[k as usize] {
+                seen[k as usize] = true;
+                new_positions[k as usize] = lift(pos2[i]);
+            }
+        }
+    }
+    let mut triangles = Vec::with_capacity(tris.len());
+    let mut planar = Vec::with_capacity(tris.len());
+    for t in tris {
+        let r = [map[t[0]], map[t[1]], map[t[2]]];
+        if r[0] == r[1] || r[1] == r[2] || r[0] == r[2] {
+            return Err(Error::Topology(format!(
+                "{}: the patch is too narrow for the spacing (a triangle would join a vertex to itself); lower the spacing",
+                what()
+            )));
+        }
+        triangles.push(r);
+        planar.push([pos2[t[0]], pos2[t[1]], pos2[t[2]]]);
+    }
+    Ok(PatchMesh {
+        new_positions,
+        triangles,
+        planar,
+    })
+}
+
+fn tessellate_disk(
+    g: &Graph,
+    res: &Resampled,
+    hs: &[HalfEdge],
+    d: f64,
+    index: usize,
+) -> Result<PatchMesh> {
+    let what = || format!("patch {index} (bounded by {})", describe_patch(g, hs));
+    let ids = loop_vertices(res, hs);
+    let p3: Vec<DVec3> = ids.iter().map(|&i| res.positions[i as usize]).collect();
+    let center = p3.iter().sum::<DVec3>() / p3.len() as f64;
+    // [CG] §3.3: the plane through the mean point with the mean normal. When the normals
+    // cancel out (a hemisphere bounded by a great circle) or disagree with the cycle's
+    // orientation, the plane of the cycle's vector area is used instead.
+    let mean_n = ids.iter().map(|&i| res.normals[i as usize]).sum::<DVec3>() / ids.len() as f64;
+    let area_n = polygon_vector_area(&p3).normalize_or_zero();
+    let n = if mean_n.length() > 0.1 && mean_n.dot(area_n) > 0.0 {
+        mean_n.normalize()
+    } else {
+        area_n
+    };
+    if n == DVec3::ZERO {
+        return Err(Error::Topology(format!(
+            "{}: the cycle encloses no area",
+            what()
+        )));
+    }
+    let (e1, e2) = plane_frame(n);
+    let pts: Vec<DVec2> = p3
+        .iter()
+        .map(|p| DVec2::new((*p - center).dot(e1), (*p - center).dot(e2)))
+        .collect();
+    let map: Vec<VRef> = ids.iter().map(|&i| VRef::Curve(i)).collect();
+    let (tris, pos2, map) = triangulate(pts, map, d, &what)?;
+    collect(tris, &pos2, &map, |q| center + q.x * e1 + q.y * e2, &what)
+}
+
+fn tessellate_tube(
+    g: &Graph,
+    res: &Resampled,
+    loops: &[Vec<HalfEdge>; 2],
+    d: f64,
+    index: usize,
+) -> Result<PatchMesh> {
+    let all: Vec<HalfEdge> = loops[0].iter().chain(&loops[1]).copied().collect();
+    let what = || format!("tube patch {index} (between {})", describe_patch(g, &all));
+    let a = loop_vertices(res, &loops[0]);
+    let b = loop_vertices(res, &loops[1]);
+    let pos = |i: u32| res.positions[i as usize];
+    let cum = |ids: &[u32]| {
+        let mut c = vec![0.0];
+        for k in 0..ids.len() {
+            let l = pos(ids[k]).distance(pos(ids[(k + 1) % ids.len()]));
+            c.push(c[k] + l);
+        }
+        c
+    };
+    let ca = a.iter().map(|&i| pos(i)).sum::<DVec3>() / a.len() as f64;
+    let cb = b.iter().map(|&i| pos(i)).sum::<DVec3>() / b.len() as f64;
+    let h = ca.distance(cb);
+    // Start B at the sample closest to A's first sample, so the seam runs straight across.
+    let j0 = (0..b.len())
+        .min_by(|&x, &y| {
+            pos(b[x])
+                .distance(pos(a[0]))
+                .total_cmp(&pos(b[y]).distance(pos(a[0])))
+        })
+        .unwrap_or(0);
+    let b: Vec<u32> = (0..b.len()).map(|k| b[(j0 + k) % b.len()]).collect();
+    let (xa, xb) = (cum(&a), cum(&b));
+    let (la, lb) = (xa[a.len()], xb[b.len()]);
+    let x_off = 0.5 * (la - lb);
+    let m = ((h / d).round() as usize).max(2);
+    let mut pts = Vec::new();
+    let mut map = Vec::new();
+    // Bottom edge: loop A left to right (the tube is on its left, above).
+    for (k, &i) in a.iter().enumerate() {
+        pts.push(DVec2::new(xa[k], 0.0));
+        map.push(VRef::Curve(i));
+    }
+    pts.push(DVec2::new(la, 0.0));
+    map.push(VRef::Curve(a[0]));
+    // Right seam, bottom to top; seam vertex k is shared with the left seam.
+    for k in 1..m {
+        let t = k as f64 / m as f64;
+        pts.push(DVec2::new(la, 0.0).lerp(DVec2::new(x_off + lb, h), t));
+        map.push(VRef::New((k - 1) as u32));
+    }
+    // Top edge: loop B right to left (its traversal direction).
+    for (k, &i) in b.iter().enumerate() {
+        pts.push(DVec2::new(x_off + lb - xb[k], h));
+        map.push(VRef::Curve(i));
+    }
+    pts.push(DVec2::new(x_off, h));
+    map.push(VRef::Curve(b[0]));
+    // Left seam, top to bottom.
+    for k in (1..m).rev() {
+        let t = k as f64 / m as f64;
+        pts.push(DVec2::new(0.0, 0.0).lerp(DVec2::new(x_off, h), t));
+        map.push(VRef::New((k - 1) as u32));
+    }
+    let (tris, pos2, map) = triangulate(pts, map, d, &what)?;
+    // Lift: blend the two loops at the same strip abscissa.
+    let at = |ids: &[u32], c: &[f64], x: f64| {
+        let l = c[ids.len()];
+        let x = x.rem_euclid(l);
+        let k = (c.partition_point(|&v| v <= x).max(1) - 1).min(ids.len() - 1);
+        let t = ((x - c[k]) / (c[k + 1] - c[k]).max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        pos(ids[k]).lerp(pos(ids[(k + 1) % ids.len()]), t)
+    };
+    let lift = |q: DVec2| {
+        let v = (q.y / h).clamp(0.0, 1.0);
+        let u = (q.x / la.max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        at(&a, &xa, u * la).lerp(at(&b, &xb, lb - u * lb), v)
+    };
+    collect(tris, &pos2, &map, lift, &what)
+}
+
+/// Tessellates every patch at spacing `d` and merges them into one mesh whose first vertices
+/// are the curve vertices of `res`.
+pub fn tessellate(g: &Graph, res: &Resampled, patches: &[Patch], d: f64) -> Result<Mesh> {
+    let parts: Vec<Result<PatchMesh>> = patches
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| match p {
+            Patch::Disk(hs) => tessellate_disk(g, res, hs, d, i),
+            Patch::Tube(loops) => tessellate_tube(g, res, loops, d, i),
+        })
+        .collect();
+    let nc = res.positions.len();
+    let mut mesh = Mesh {
+        positions: res.positions.clone(),
+        faces: Vec::new(),
+        num_curve: nc,
+        curve_normals: res.normals.clone(),
+        on_boundary: res.on_boundary.clone(),
+        planar: Vec::new(),
+        face_patch: Vec::new(),
+    };
+    for (pi, part) in parts.into_iter().enumerate() {
+        let part = part?;
+        let base = mesh.positions.len() as u32;
+        mesh.positions.extend_from_slice(&part.new_positions);
+        for (t, q) in part.triangles.iter().zip(part.planar) {
+            let id = |r: VRef| match r {
+                VRef::Curve(i) => i,
+                VRef::New(k) => base + k,
+            };
+            mesh.faces.push([id(t[0]), id(t[1]), id(t[2])]);
+            mesh.planar.push(q);
+            mesh.face_patch.push(pi as u32);
+        }
+    }
+    mesh.on_boundary.resize(mesh.positions.len(), false);
+    if mesh.positions.len() > u32::MAX as usize {
+        return Err(Error::Usage(
+            "the mesh would exceed 4 billion vertices; increase the spacing".into(),
+        ));
+    }
+    // Every curve vertex must be used by some face (a vertex left out means a broken patch).
+    let mut used = vec![false; mesh.positions.len()];
+    for f in &mesh.faces {
+        for &i in f {
+            used[i as usize] = true;
+        }
+    }
+    if let Some(i) = used.iter().position(|u| !u) {
+        return Err(Error::Topology(format!(
+            "vertex {i} at {} is not part of any patch (a curve that bounds no patch?)",
+            fmt_point(mesh.positions[i])
+        )));
+    }
+    Ok(mesh)
+}
