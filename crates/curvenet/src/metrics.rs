@@ -169,3 +169,158 @@ mod tests {
         assert!(d.normalize().cross(sad.normal(p)).length() < 1e-9);
     }
 }
+
+/// Closest point to `p` on the triangle `abc` (Ericson, *Real-Time Collision Detection*,
+/// §5.1.5).
+pub fn closest_point_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    a + ab * (vb * denom) + ac * (vc * denom)
+}
+
+/// Exact point-to-mesh distance queries, accelerated by a uniform grid of triangle boxes.
+pub struct MeshDistance<'a> {
+    positions: &'a [DVec3],
+    faces: &'a [[u32; 3]],
+    origin: DVec3,
+    cell: f64,
+    dims: [usize; 3],
+    cells: Vec<Vec<u32>>,
+}
+
+impl<'a> MeshDistance<'a> {
+    /// Builds the grid (about one triangle per cell on average).
+    pub fn new(positions: &'a [DVec3], faces: &'a [[u32; 3]]) -> Self {
+        let bb = crate::geom::Aabb::of(faces.iter().flatten().map(|&i| positions[i as usize]));
+        let ext = (bb.max - bb.min).max(DVec3::splat(1e-300));
+        let volume_cells = (faces.len().max(1) as f64).max(1.0);
+        let cell = (ext.x * ext.y * ext.z / volume_cells).cbrt().max(ext.max_element() / 256.0).max(1e-300);
+        let dims = [0, 1, 2].map(|k| ((ext[k] / cell).ceil() as usize).clamp(1, 512));
+        let mut cells = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
+        let me = MeshDistance { positions, faces, origin: bb.min, cell, dims, cells: Vec::new() };
+        for (fi, f) in faces.iter().enumerate() {
+            let tb = crate::geom::Aabb::of(f.iter().map(|&i| positions[i as usize]));
+            let (lo, hi) = (me.cell_of(tb.min), me.cell_of(tb.max));
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        cells[(z * dims[1] + y) * dims[0] + x].push(fi as u32);
+                    }
+                }
+            }
+        }
+        MeshDistance { cells, ..me }
+    }
+
+    fn cell_of(&self, p: DVec3) -> [usize; 3] {
+        let q = (p - self.origin) / self.cell;
+        [0, 1, 2].map(|k| (q[k].floor().max(0.0) as usize).min(self.dims[k] - 1))
+    }
+
+    /// Distance from `p` to the mesh and the closest point.
+    pub fn closest(&self, p: DVec3) -> (f64, DVec3) {
+        let c = self.cell_of(p);
+        let mut best = (f64::INFINITY, p);
+        let max_ring = *self.dims.iter().max().unwrap_or(&1);
+        for ring in 0..=max_ring {
+            // Every point in rings beyond `ring` is at least this far away.
+            let outside = (p - self.origin) / self.cell;
+            let inside_grid = (0..3).all(|k| outside[k] >= 0.0 && outside[k] <= self.dims[k] as f64);
+            if inside_grid && ring > 0 && best.0 <= (ring as f64 - 1.0) * self.cell {
+                break;
+            }
+            let lo = [0, 1, 2].map(|k| c[k].saturating_sub(ring));
+            let hi = [0, 1, 2].map(|k| (c[k] + ring).min(self.dims[k] - 1));
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        let on_shell = [x, y, z].iter().zip(c.iter()).any(|(&v, &cc)| v.abs_diff(cc) == ring);
+                        if !on_shell {
+                            continue;
+                        }
+                        for &fi in &self.cells[(z * self.dims[1] + y) * self.dims[0] + x] {
+                            let f = self.faces[fi as usize];
+                            let q = closest_point_on_triangle(
+                                p,
+                                self.positions[f[0] as usize],
+                                self.positions[f[1] as usize],
+                                self.positions[f[2] as usize],
+                            );
+                            let d = p.distance(q);
+                            if d < best.0 {
+                                best = (d, q);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
+#[cfg(test)]
+mod mesh_distance_tests {
+    use super::*;
+
+    #[test]
+    fn grid_matches_brute_force() {
+        // A bumpy open grid surface.
+        let k = 20;
+        let mut p = Vec::new();
+        for j in 0..=k {
+            for i in 0..=k {
+                let (u, v) = (i as f64 / k as f64, j as f64 / k as f64);
+                p.push(DVec3::new(u, v, 0.2 * (6.0 * u).sin() * (4.0 * v).cos()));
+            }
+        }
+        let id = |i: usize, j: usize| (j * (k + 1) + i) as u32;
+        let mut t = Vec::new();
+        for j in 0..k {
+            for i in 0..k {
+                t.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                t.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        let md = MeshDistance::new(&p, &t);
+        let mut s = 12345u64;
+        let mut rnd = || {
+            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..300 {
+            let q = DVec3::new(rnd() * 1.6 - 0.3, rnd() * 1.6 - 0.3, rnd() - 0.5);
+            let brute = t
+                .iter()
+                .map(|f| q.distance(closest_point_on_triangle(q, p[f[0] as usize], p[f[1] as usize], p[f[2] as usize])))
+                .fold(f64::INFINITY, f64::min);
+            assert!((md.closest(q).0 - brute).abs() < 1e-12, "{q:?}");
+        }
+    }
+}
