@@ -5,7 +5,7 @@
 //! normal control*, Computers & Graphics 2016 ([CG]), with its baselines.
 //!
 //! ```no_run
-//! let network = curvenet::examples::example("sphere").unwrap();
+//! let Some(network) = curvenet::examples::example("sphere") else { return Ok(()) };
 //! let surface = curvenet::surface(&network, &curvenet::Options::default())?;
 //! curvenet::io::write_mesh("sphere.ply".as_ref(), surface.mesh_data())?;
 //! # Ok::<(), curvenet::Error>(())

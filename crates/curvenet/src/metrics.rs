@@ -141,35 +141,6 @@ pub fn normal_angles_to_truth(
     }))
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn closest_points_are_on_the_surfaces() {
-        let p = DVec3::new(0.3, -1.7, 0.9);
-        let s = Truth::Sphere {
-            center: DVec3::new(0.1, 0.0, 0.0),
-            radius: 2.0,
-        };
-        assert!(
-            (s.distance(p) - ((p - DVec3::new(0.1, 0.0, 0.0)).length() - 2.0).abs()).abs() < 1e-15
-        );
-        let t = Truth::Torus {
-            major: 4.0,
-            minor: 2.0,
-        };
-        assert!((t.distance(DVec3::new(6.5, 0.0, 0.0)) - 0.5).abs() < 1e-15);
-        assert!((t.distance(DVec3::new(0.0, 4.0, 1.0)) - 1.0).abs() < 1e-15);
-        let sad = Truth::Saddle;
-        let q = sad.closest_point(p);
-        assert!((q.z - 0.5 * (q.x * q.x - q.y * q.y)).abs() < 1e-12);
-        // The offset is along the normal.
-        let d = p - q;
-        assert!(d.normalize().cross(sad.normal(p)).length() < 1e-9);
-    }
-}
-
 /// Closest point to `p` on the triangle `abc` (Ericson, *Real-Time Collision Detection*,
 /// §5.1.5).
 pub fn closest_point_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
@@ -220,10 +191,20 @@ impl<'a> MeshDistance<'a> {
         let bb = crate::geom::Aabb::of(faces.iter().flatten().map(|&i| positions[i as usize]));
         let ext = (bb.max - bb.min).max(DVec3::splat(1e-300));
         let volume_cells = (faces.len().max(1) as f64).max(1.0);
-        let cell = (ext.x * ext.y * ext.z / volume_cells).cbrt().max(ext.max_element() / 256.0).max(1e-300);
+        let cell = (ext.x * ext.y * ext.z / volume_cells)
+            .cbrt()
+            .max(ext.max_element() / 256.0)
+            .max(1e-300);
         let dims = [0, 1, 2].map(|k| ((ext[k] / cell).ceil() as usize).clamp(1, 512));
         let mut cells = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
-        let me = MeshDistance { positions, faces, origin: bb.min, cell, dims, cells: Vec::new() };
+        let me = MeshDistance {
+            positions,
+            faces,
+            origin: bb.min,
+            cell,
+            dims,
+            cells: Vec::new(),
+        };
         for (fi, f) in faces.iter().enumerate() {
             let tb = crate::geom::Aabb::of(f.iter().map(|&i| positions[i as usize]));
             let (lo, hi) = (me.cell_of(tb.min), me.cell_of(tb.max));
@@ -251,7 +232,8 @@ impl<'a> MeshDistance<'a> {
         for ring in 0..=max_ring {
             // Every point in rings beyond `ring` is at least this far away.
             let outside = (p - self.origin) / self.cell;
-            let inside_grid = (0..3).all(|k| outside[k] >= 0.0 && outside[k] <= self.dims[k] as f64);
+            let inside_grid =
+                (0..3).all(|k| outside[k] >= 0.0 && outside[k] <= self.dims[k] as f64);
             if inside_grid && ring > 0 && best.0 <= (ring as f64 - 1.0) * self.cell {
                 break;
             }
@@ -260,7 +242,10 @@ impl<'a> MeshDistance<'a> {
             for x in lo[0]..=hi[0] {
                 for y in lo[1]..=hi[1] {
                     for z in lo[2]..=hi[2] {
-                        let on_shell = [x, y, z].iter().zip(c.iter()).any(|(&v, &cc)| v.abs_diff(cc) == ring);
+                        let on_shell = [x, y, z]
+                            .iter()
+                            .zip(c.iter())
+                            .any(|(&v, &cc)| v.abs_diff(cc) == ring);
                         if !on_shell {
                             continue;
                         }
@@ -286,41 +271,5 @@ impl<'a> MeshDistance<'a> {
 }
 
 #[cfg(test)]
-mod mesh_distance_tests {
-    use super::*;
-
-    #[test]
-    fn grid_matches_brute_force() {
-        // A bumpy open grid surface.
-        let k = 20;
-        let mut p = Vec::new();
-        for j in 0..=k {
-            for i in 0..=k {
-                let (u, v) = (i as f64 / k as f64, j as f64 / k as f64);
-                p.push(DVec3::new(u, v, 0.2 * (6.0 * u).sin() * (4.0 * v).cos()));
-            }
-        }
-        let id = |i: usize, j: usize| (j * (k + 1) + i) as u32;
-        let mut t = Vec::new();
-        for j in 0..k {
-            for i in 0..k {
-                t.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-                t.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
-        let md = MeshDistance::new(&p, &t);
-        let mut s = 12345u64;
-        let mut rnd = || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
-        for _ in 0..300 {
-            let q = DVec3::new(rnd() * 1.6 - 0.3, rnd() * 1.6 - 0.3, rnd() - 0.5);
-            let brute = t
-                .iter()
-                .map(|f| q.distance(closest_point_on_triangle(q, p[f[0] as usize], p[f[1] as usize], p[f[2] as usize])))
-                .fold(f64::INFINITY, f64::min);
-            assert!((md.closest(q).0 - brute).abs() < 1e-12, "{q:?}");
-        }
-    }
-}
+#[path = "tests/metrics.rs"]
+mod tests;

@@ -160,45 +160,5 @@ pub fn product(a: &Csc, d: &[f64], b: &Csc, first: usize) -> Csc {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Dense → Csc.
-    pub(crate) fn from_dense(a: &[Vec<f64>]) -> Csc {
-        let (n, m) = (a.len(), a[0].len());
-        let mut c = Csc {
-            nrows: n,
-            ncols: m,
-            col_ptr: vec![0],
-            ..Default::default()
-        };
-        for j in 0..m {
-            for (i, row) in a.iter().enumerate() {
-                if row[j] != 0.0 {
-                    c.row_idx.push(i as u32);
-                    c.values.push(row[j]);
-                }
-            }
-            c.col_ptr.push(c.row_idx.len());
-        }
-        c
-    }
-
-    #[test]
-    fn product_matches_dense() {
-        let a = vec![
-            vec![2.0, -1.0, 0.0],
-            vec![-1.0, 2.0, -1.0],
-            vec![0.0, -1.0, 1.0],
-        ];
-        let d = [0.5, 0.0, 3.0];
-        let ca = from_dense(&a);
-        let p = product(&ca, &d, &ca, 1);
-        for i in 1..3 {
-            for j in 1..3 {
-                let want: f64 = (0..3).map(|k| a[i][k] * d[k] * a[k][j]).sum();
-                assert!((p.get(i - 1, j - 1) - want).abs() < 1e-15, "{i} {j}");
-            }
-        }
-    }
-}
+#[path = "tests/sparse.rs"]
+mod tests;

@@ -130,9 +130,16 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
     }
     // A 2-manifold's border passes through a node once or not at all: 0 or 2 boundary ends.
     for (v, list) in ends.iter().enumerate() {
-        let boundary: Vec<usize> = list.iter().filter(|(s, _)| g.segments[*s].boundary).map(|(s, _)| *s).collect();
+        let boundary: Vec<usize> = list
+            .iter()
+            .filter(|(s, _)| g.segments[*s].boundary)
+            .map(|(s, _)| *s)
+            .collect();
         if boundary.len() != 0 && boundary.len() != 2 {
-            let mut names: Vec<&str> = boundary.iter().map(|&s| g.labels[g.segments[s].curve].as_str()).collect();
+            let mut names: Vec<&str> = boundary
+                .iter()
+                .map(|&s| g.labels[g.segments[s].curve].as_str())
+                .collect();
             names.dedup();
             return Err(Error::Topology(format!(
                 "{} boundary segment ends meet at {} ({}): the surface is not a 2-manifold there — a segment \

@@ -1,0 +1,67 @@
+use super::*;
+
+#[test]
+fn closest_points_are_on_the_surfaces() {
+    let p = DVec3::new(0.3, -1.7, 0.9);
+    let s = Truth::Sphere {
+        center: DVec3::new(0.1, 0.0, 0.0),
+        radius: 2.0,
+    };
+    assert!((s.distance(p) - ((p - DVec3::new(0.1, 0.0, 0.0)).length() - 2.0).abs()).abs() < 1e-15);
+    let t = Truth::Torus {
+        major: 4.0,
+        minor: 2.0,
+    };
+    assert!((t.distance(DVec3::new(6.5, 0.0, 0.0)) - 0.5).abs() < 1e-15);
+    assert!((t.distance(DVec3::new(0.0, 4.0, 1.0)) - 1.0).abs() < 1e-15);
+    let sad = Truth::Saddle;
+    let q = sad.closest_point(p);
+    assert!((q.z - 0.5 * (q.x * q.x - q.y * q.y)).abs() < 1e-12);
+    // The offset is along the normal.
+    let d = p - q;
+    assert!(d.normalize().cross(sad.normal(p)).length() < 1e-9);
+}
+
+#[test]
+fn grid_matches_brute_force() {
+    // A bumpy open grid surface.
+    let k = 20;
+    let mut p = Vec::new();
+    for j in 0..=k {
+        for i in 0..=k {
+            let (u, v) = (i as f64 / k as f64, j as f64 / k as f64);
+            p.push(DVec3::new(u, v, 0.2 * (6.0 * u).sin() * (4.0 * v).cos()));
+        }
+    }
+    let id = |i: usize, j: usize| (j * (k + 1) + i) as u32;
+    let mut t = Vec::new();
+    for j in 0..k {
+        for i in 0..k {
+            t.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            t.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    let md = MeshDistance::new(&p, &t);
+    let mut s = 12345u64;
+    let mut rnd = || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..300 {
+        let q = DVec3::new(rnd() * 1.6 - 0.3, rnd() * 1.6 - 0.3, rnd() - 0.5);
+        let brute = t
+            .iter()
+            .map(|f| {
+                q.distance(closest_point_on_triangle(
+                    q,
+                    p[f[0] as usize],
+                    p[f[1] as usize],
+                    p[f[2] as usize],
+                ))
+            })
+            .fold(f64::INFINITY, f64::min);
+        assert!((md.closest(q).0 - brute).abs() < 1e-12, "{q:?}");
+    }
+}
