@@ -4,7 +4,7 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use curvenet::io::{read_network, stage_mesh, write_network, Staged};
 use curvenet::metrics::{distance_to_truth, Truth};
-use curvenet::{examples, Error, Method, Metric, Options, Weighting};
+use curvenet::{examples, Error, GuideArea, Method, Metric, Options, Weighting};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -72,6 +72,14 @@ enum EnergyArg {
     Uniform,
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum GuideAreaArg {
+    /// The Laplacian's own Voronoi area (consistent with the fit; removes most planar bias).
+    Mass,
+    /// The Voronoi area on the propagated surface V*, as the paper states it.
+    Surface,
+}
+
 #[derive(Args)]
 struct SurfaceArgs {
     /// Input curve network (.json, .obj, .net).
@@ -99,6 +107,9 @@ struct SurfaceArgs {
     /// Weighting of the normal-control energy.
     #[arg(long, value_enum, default_value = "area")]
     energy: EnergyArg,
+    /// Area dividing the mean-curvature guide ([CG] eq. 1).
+    #[arg(long, value_enum, default_value = "mass")]
+    guide_area: GuideAreaArg,
     /// Snapping tolerance: curves closer than this meet at a node [default: the network's "snap",
     /// else 1e-3 × its bounding-box diagonal].
     #[arg(long, value_name = "S")]
@@ -165,6 +176,10 @@ fn options(a: &SurfaceArgs) -> Options {
             EnergyArg::Area => Weighting::Area,
             EnergyArg::Uniform => Weighting::Uniform,
         },
+        guide_area: match a.guide_area {
+            GuideAreaArg::Mass => GuideArea::Mass,
+            GuideAreaArg::Surface => GuideArea::Surface,
+        },
         snap: a.snap,
     }
 }
@@ -176,9 +191,7 @@ struct Progress {
 
 impl Progress {
     fn new(quiet: bool) -> Self {
-        Progress {
-            on: !quiet && std::io::stderr().is_terminal(),
-        }
+        Progress { on: !quiet && std::io::stderr().is_terminal() }
     }
     fn stage(&self, name: &str, seconds: f64, detail: &str) {
         if self.on {
@@ -195,18 +208,9 @@ fn run_surface(a: &SurfaceArgs) -> Result<(), Error> {
     let clock = Instant::now();
     let network = read_network(&a.input)?;
     let read = clock.elapsed().as_secs_f64();
-    progress.stage(
-        "read",
-        read,
-        &format!(
-            "{} curves, {} samples",
-            network.curves.len(),
-            network.num_samples()
-        ),
-    );
+    progress.stage("read", read, &format!("{} curves, {} samples", network.curves.len(), network.num_samples()));
     let opts = options(a);
-    let mut surface =
-        curvenet::surface_with_progress(&network, &opts, &mut |s, t, d| progress.stage(s, t, d))?;
+    let mut surface = curvenet::surface_with_progress(&network, &opts, &mut |s, t, d| progress.stage(s, t, d))?;
     for w in &surface.warnings {
         eprintln!("warning: {w}");
     }
@@ -219,8 +223,7 @@ fn run_surface(a: &SurfaceArgs) -> Result<(), Error> {
     t.total = start.elapsed().as_secs_f64();
     let staged_stats = match &a.stats {
         Some(path) => {
-            let json = serde_json::to_string_pretty(&surface.stats)
-                .map_err(|e| Error::Usage(e.to_string()))?;
+            let json = serde_json::to_string_pretty(&surface.stats).map_err(|e| Error::Usage(e.to_string()))?;
             Some(Staged::write(path, |w| w.write_all(json.as_bytes()))?)
         }
         None => None,
@@ -255,51 +258,30 @@ fn run_example(a: &ExampleArgs) -> Result<(), Error> {
         return Ok(());
     }
     let (Some(name), Some(out)) = (&a.name, &a.output) else {
-        return Err(Error::Usage(
-            "give an example name and -o FILE (see --list)".into(),
-        ));
+        return Err(Error::Usage("give an example name and -o FILE (see --list)".into()));
     };
     let net = examples::example(name).ok_or_else(|| {
         let names: Vec<&str> = examples::EXAMPLES.iter().map(|e| e.0).collect();
-        Error::Usage(format!(
-            "unknown example \"{name}\"; the examples are: {}",
-            names.join(", ")
-        ))
+        Error::Usage(format!("unknown example \"{name}\"; the examples are: {}", names.join(", ")))
     })?;
     write_network(out, &net)?;
-    println!(
-        "{}: example \"{name}\", {} curves, {} samples",
-        out.display(),
-        net.curves.len(),
-        net.num_samples()
-    );
+    println!("{}: example \"{name}\", {} curves, {} samples", out.display(), net.curves.len(), net.num_samples());
     Ok(())
 }
 
 fn run_demo(a: &DemoArgs) -> Result<(), Error> {
-    std::fs::create_dir_all(&a.out).map_err(|e| Error::Io {
-        path: a.out.display().to_string(),
-        source: e,
-    })?;
-    let net =
-        examples::example("sphere").ok_or_else(|| Error::Usage("sphere example missing".into()))?;
+    std::fs::create_dir_all(&a.out).map_err(|e| Error::Io { path: a.out.display().to_string(), source: e })?;
+    let net = examples::example("sphere").ok_or_else(|| Error::Usage("sphere example missing".into()))?;
     let network_path = a.out.join("sphere.json");
     let mesh_path = a.out.join("sphere.ply");
     write_network(&network_path, &net)?;
     let progress = Progress::new(false);
-    let surface = curvenet::surface_with_progress(&net, &Options::default(), &mut |s, t, d| {
-        progress.stage(s, t, d)
-    })?;
+    let surface = curvenet::surface_with_progress(&net, &Options::default(), &mut |s, t, d| progress.stage(s, t, d))?;
     curvenet::io::write_mesh(&mesh_path, surface.mesh_data())?;
-    let truth = Truth::Sphere {
-        center: Default::default(),
-        radius: 1.0,
-    };
+    let truth = Truth::Sphere { center: Default::default(), radius: 1.0 };
     let err = distance_to_truth(&surface.mesh.positions, surface.mesh.num_curve, &truth);
     let s = &surface.stats;
-    println!(
-        "Surfaced the bundled sphere network (3 great circles with normals) by normal control:"
-    );
+    println!("Surfaced the bundled sphere network (3 great circles with normals) by normal control:");
     println!(
         "  {} vertices ({} free, {} on the curves), {} faces, {} patches, in {:.3} s",
         s.vertices,
@@ -315,14 +297,8 @@ fn run_demo(a: &DemoArgs) -> Result<(), Error> {
     );
     println!("Wrote:");
     println!("  {}  the input network", show(&network_path));
-    println!(
-        "  {}  the surface (PLY with normals, mean curvature and the curve-vertex flag)",
-        show(&mesh_path)
-    );
-    println!(
-        "Next: curvenet surface {} -o sphere.obj --vertices 50000",
-        show(&network_path)
-    );
+    println!("  {}  the surface (PLY with normals, mean curvature and the curve-vertex flag)", show(&mesh_path));
+    println!("Next: curvenet surface {} -o sphere.obj --vertices 50000", show(&network_path));
     Ok(())
 }
 

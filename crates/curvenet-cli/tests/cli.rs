@@ -36,12 +36,7 @@ fn expect_failure(name: &str, file: &str, input: &[u8], code: i32, expect: &[&st
     let inp = dir.join(file);
     std::fs::write(&inp, input).unwrap();
     let out = dir.join("out.ply");
-    let o = run(&[
-        "surface",
-        inp.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let o = run(&["surface", inp.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(code), "{name}: {err}");
     for e in expect {
@@ -49,11 +44,7 @@ fn expect_failure(name: &str, file: &str, input: &[u8], code: i32, expect: &[&st
     }
     assert!(!err.contains("panicked"), "{name}: {err}");
     assert!(!out.exists(), "{name}: output written");
-    assert_eq!(
-        std::fs::read_dir(&dir).unwrap().count(),
-        1,
-        "{name}: stray files"
-    );
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "{name}: stray files");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -67,27 +58,14 @@ fn json_of(net: &Network) -> Vec<u8> {
 }
 
 fn curve(points: Vec<DVec3>, normals: Vec<DVec3>, closed: bool, boundary: bool) -> Curve {
-    Curve {
-        name: None,
-        points,
-        normals,
-        closed,
-        boundary,
-    }
+    Curve { name: None, points, normals, closed, boundary }
 }
 
-const TWO_SAMPLES: &str =
-    r#"{"curves": [{"points": [[0,0,0],[1,0,0]], "normals": [[0,0,1],[0,0,1]]}]}"#;
+const TWO_SAMPLES: &str = r#"{"curves": [{"points": [[0,0,0],[1,0,0]], "normals": [[0,0,1],[0,0,1]]}]}"#;
 
 #[test]
 fn malformed_files_report_line_and_column() {
-    expect_failure(
-        "json-truncated",
-        "n.json",
-        b"{\"curves\": [\n  {\"points\": [[0,0,0],",
-        1,
-        &["n.json:2:"],
-    );
+    expect_failure("json-truncated", "n.json", b"{\"curves\": [\n  {\"points\": [[0,0,0],", 1, &["n.json:2:"]);
     expect_failure(
         "json-type",
         "n.json",
@@ -95,27 +73,9 @@ fn malformed_files_report_line_and_column() {
         1,
         &["n.json:1:", "invalid type"],
     );
-    expect_failure(
-        "obj-number",
-        "n.obj",
-        b"v 0 0 0\nv 1 zero 0\n",
-        1,
-        &["n.obj:2:5", "zero"],
-    );
-    expect_failure(
-        "obj-l",
-        "n.obj",
-        b"v 0 0 0\nvn 0 0 1\nl 1 x\n",
-        1,
-        &["n.obj:3:5"],
-    );
-    expect_failure(
-        "net-truncated",
-        "n.net",
-        b"3\n0 0 0 0 0 1\n1 0 0 0 0 1\n",
-        1,
-        &["n.net:", "ends early"],
-    );
+    expect_failure("obj-number", "n.obj", b"v 0 0 0\nv 1 zero 0\n", 1, &["n.obj:2:5", "zero"]);
+    expect_failure("obj-l", "n.obj", b"v 0 0 0\nvn 0 0 1\nl 1 x\n", 1, &["n.obj:3:5"]);
+    expect_failure("net-truncated", "n.net", b"3\n0 0 0 0 0 1\n1 0 0 0 0 1\n", 1, &["n.net:", "ends early"]);
     expect_failure(
         "net-flag",
         "n.net",
@@ -123,20 +83,8 @@ fn malformed_files_report_line_and_column() {
         1,
         &["n.net:5:1", "boundary flag"],
     );
-    expect_failure(
-        "net-count",
-        "n.net",
-        b"two\n",
-        1,
-        &["n.net:1:1", "number of samples"],
-    );
-    expect_failure(
-        "not-utf8",
-        "n.json",
-        &[0xff, 0xfe, 0x00],
-        1,
-        &["not valid UTF-8"],
-    );
+    expect_failure("net-count", "n.net", b"two\n", 1, &["n.net:1:1", "number of samples"]);
+    expect_failure("not-utf8", "n.json", &[0xff, 0xfe, 0x00], 1, &["not valid UTF-8"]);
 }
 
 #[test]
@@ -148,20 +96,8 @@ fn non_finite_values() {
         1,
         &["n.json:1:"],
     );
-    expect_failure(
-        "obj-nan",
-        "n.obj",
-        b"v 0 0 nan\n",
-        1,
-        &["n.obj:1:7", "not a finite number"],
-    );
-    expect_failure(
-        "net-inf",
-        "n.net",
-        b"1\n0 0 0 inf 0 1\n",
-        1,
-        &["n.net:2:7", "not a finite number"],
-    );
+    expect_failure("obj-nan", "n.obj", b"v 0 0 nan\n", 1, &["n.obj:1:7", "not a finite number"]);
+    expect_failure("net-inf", "n.net", b"1\n0 0 0 inf 0 1\n", 1, &["n.net:2:7", "not a finite number"]);
 }
 
 #[test]
@@ -187,13 +123,7 @@ fn invalid_values_name_curve_and_sample() {
         1,
         &["curve 0", "1 sample", "at least 2"],
     );
-    expect_failure(
-        "no-curves",
-        "n.json",
-        br#"{"curves": []}"#,
-        1,
-        &["no curves"],
-    );
+    expect_failure("no-curves", "n.json", br#"{"curves": []}"#, 1, &["no curves"]);
     expect_failure(
         "obj-range",
         "n.obj",
@@ -208,13 +138,7 @@ fn invalid_values_name_curve_and_sample() {
         1,
         &["n.net:6:3", "out of range"],
     );
-    expect_failure(
-        "obj-normals",
-        "n.obj",
-        b"v 0 0 0\nv 1 0 0\nvn 0 0 1\nl 1 2\n",
-        1,
-        &["2 \"v\" lines but 1 \"vn\""],
-    );
+    expect_failure("obj-normals", "n.obj", b"v 0 0 0\nv 1 0 0\nvn 0 0 1\nl 1 2\n", 1, &["2 \"v\" lines but 1 \"vn\""]);
 }
 
 fn sphere_with(extra: Curve) -> Network {
@@ -242,35 +166,17 @@ fn non_manifold_networks_name_the_node_or_segment() {
 
     // Three half-disk pages sharing a diameter: a segment used by three patches.
     let n = 32;
-    let diam: Vec<DVec3> = (0..=n)
-        .map(|k| DVec3::new(-1.0 + 2.0 * k as f64 / n as f64, 0.0, 0.0))
-        .collect();
-    let mut curves = vec![curve(
-        diam.clone(),
-        vec![DVec3::Z; diam.len()],
-        false,
-        false,
-    )];
+    let diam: Vec<DVec3> = (0..=n).map(|k| DVec3::new(-1.0 + 2.0 * k as f64 / n as f64, 0.0, 0.0)).collect();
+    let mut curves = vec![curve(diam.clone(), vec![DVec3::Z; diam.len()], false, false)];
     for a in [-20f64, 0.0, 20.0] {
         let a = a.to_radians();
-        let (u, nn) = (
-            DVec3::new(0.0, a.cos(), a.sin()),
-            DVec3::new(0.0, -a.sin(), a.cos()),
-        );
+        let (u, nn) = (DVec3::new(0.0, a.cos(), a.sin()), DVec3::new(0.0, -a.sin(), a.cos()));
         let pts: Vec<DVec3> = (0..=n)
-            .map(|k| {
-                DVec3::X * (PI * k as f64 / n as f64).cos() + u * (PI * k as f64 / n as f64).sin()
-            })
+            .map(|k| DVec3::X * (PI * k as f64 / n as f64).cos() + u * (PI * k as f64 / n as f64).sin())
             .collect();
         curves.push(curve(pts, vec![nn; n + 1], false, true));
     }
-    expect_failure(
-        "book",
-        "n.json",
-        &json_of(&Network { curves, snap: None }),
-        1,
-        &["not a 2-manifold", "node"],
-    );
+    expect_failure("book", "n.json", &json_of(&Network { curves, snap: None }), 1, &["not a 2-manifold", "node"]);
 
     // A boundary loop whose projection crosses itself (a limaçon lifted out of its plane).
     let pts: Vec<DVec3> = (0..200)
@@ -280,17 +186,8 @@ fn non_manifold_networks_name_the_node_or_segment() {
             DVec3::new(r * t.cos(), r * t.sin(), 0.3 * t.sin())
         })
         .collect();
-    let net = Network {
-        curves: vec![curve(pts, vec![DVec3::Z; 200], true, true)],
-        snap: None,
-    };
-    expect_failure(
-        "self-crossing",
-        "n.json",
-        &json_of(&net),
-        1,
-        &["patch 0", "crosses itself"],
-    );
+    let net = Network { curves: vec![curve(pts, vec![DVec3::Z; 200], true, true)], snap: None };
+    expect_failure("self-crossing", "n.json", &json_of(&net), 1, &["patch 0", "crosses itself"]);
 
     // Normals of one curve pointing inward.
     let mut net = curvenet::examples::example("sphere").unwrap();
@@ -300,10 +197,7 @@ fn non_manifold_networks_name_the_node_or_segment() {
         "n.json",
         &json_of(&net),
         1,
-        &[
-            "curve 0 (\"equator z=0\") and curve 1 (\"meridian x=0\") meet at",
-            "points inward",
-        ],
+        &["curve 0 (\"equator z=0\") and curve 1 (\"meridian x=0\") meet at", "points inward"],
     );
 
     // A boundary tag on a curve with patches on both sides.
@@ -347,12 +241,7 @@ fn failure_leaves_an_existing_output_untouched() {
     std::fs::write(&inp, r#"{"curves": []}"#).unwrap();
     let out = dir.join("out.obj");
     std::fs::write(&out, "previous result").unwrap();
-    let o = run(&[
-        "surface",
-        inp.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let o = run(&["surface", inp.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "previous result");
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
@@ -369,16 +258,15 @@ fn duplicate_samples_are_merged_with_a_warning() {
     let inp = dir.join("n.json");
     std::fs::write(&inp, json_of(&net)).unwrap();
     let out = dir.join("out.off");
-    let o = run(&[
-        "surface",
-        inp.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--vertices",
-        "3000",
-    ]);
+    let o = run(&["surface", inp.to_str().unwrap(), "-o", out.to_str().unwrap(), "--vertices", "3000"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(stderr(&o).contains("warning: curve 0 (\"equator z=0\"): 1 sample(s) repeated the previous one and were merged (sample 6)"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "warning: curve 0 (\"equator z=0\"): 1 sample(s) repeated the previous one and were merged (sample 6)"
+        ),
+        "{}",
+        stderr(&o)
+    );
     assert!(out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -406,21 +294,11 @@ fn every_format_in_and_out() {
             ]);
             assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
             let m = curvenet::io::read_mesh(&out).unwrap();
-            let s: serde_json::Value =
-                serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
+            let s: serde_json::Value = serde_json::from_slice(&std::fs::read(&stats).unwrap()).unwrap();
             assert_eq!(s["vertices"].as_u64().unwrap() as usize, m.positions.len());
-            for key in [
-                "read",
-                "nodes",
-                "resample",
-                "cycles",
-                "tessellate",
-                "operators",
-                "factor",
-                "solve",
-                "write",
-                "total",
-            ] {
+            for key in
+                ["read", "nodes", "resample", "cycles", "tessellate", "operators", "factor", "solve", "write", "total"]
+            {
                 assert!(s["timings"][key].as_f64().is_some(), "timings.{key}");
             }
             for key in ["faces", "curve_vertices", "cycles", "components"] {
@@ -430,10 +308,7 @@ fn every_format_in_and_out() {
             assert_eq!(s["components"], 1);
             if mesh == "ply" {
                 let flags = m.curve_vertex.unwrap();
-                assert_eq!(
-                    flags.iter().filter(|&&f| f).count(),
-                    s["curve_vertices"].as_u64().unwrap() as usize
-                );
+                assert_eq!(flags.iter().filter(|&&f| f).count(), s["curve_vertices"].as_u64().unwrap() as usize);
                 let h = m.mean_curvature.unwrap();
                 let mean = h.iter().sum::<f64>() / h.len() as f64;
                 assert!((mean - 1.0).abs() < 0.1, "{mean}");
@@ -449,11 +324,7 @@ fn every_format_in_and_out() {
 #[test]
 fn demo_reports_where_the_result_went() {
     let dir = scratch("demo");
-    let o = bin()
-        .args(["demo", "--out", "d"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
+    let o = bin().args(["demo", "--out", "d"]).current_dir(&dir).output().unwrap();
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(text.contains("d/sphere.ply"), "{text}");
@@ -467,17 +338,9 @@ fn demo_reports_where_the_result_went() {
 fn help_documents_every_option() {
     let o = run(&["surface", "--help"]);
     let text = String::from_utf8_lossy(&o.stdout);
-    for flag in [
-        "--method",
-        "--spacing",
-        "--vertices",
-        "--soft",
-        "--weights",
-        "--energy",
-        "--snap",
-        "--stats",
-        "Exit codes",
-    ] {
+    for flag in
+        ["--method", "--spacing", "--vertices", "--soft", "--weights", "--energy", "--snap", "--stats", "Exit codes"]
+    {
         assert!(text.contains(flag), "{flag} missing from --help");
     }
     let o = run(&["example", "--list"]);

@@ -14,10 +14,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn main() {
-    let args: Vec<String> = std::env::args()
-        .skip(1)
-        .filter(|a| a != "--bench")
-        .collect();
+    let args: Vec<String> = std::env::args().skip(1).filter(|a| a != "--bench").collect();
     let mut runs = 11;
     let mut vertices = 20_000;
     let mut names = Vec::new();
@@ -41,9 +38,7 @@ fn main() {
     }
     let dir = std::env::temp_dir().join(format!("curvenet-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
-    println!(
-        "file-to-file runs (read JSON → surface → write PLY), median of {runs}, release build"
-    );
+    println!("file-to-file runs (read JSON → surface → write PLY), median of {runs}, release build");
     println!(
         "{:<10} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>7}",
         "network",
@@ -64,10 +59,7 @@ fn main() {
         let input = dir.join(format!("{name}.json"));
         let output = dir.join(format!("{name}.ply"));
         io::write_network(&input, &net).expect("write network");
-        let opts = Options {
-            vertices: Some(vertices),
-            ..Default::default()
-        };
+        let opts = Options { vertices: Some(vertices), ..Default::default() };
         let mut all: Vec<Timings> = Vec::new();
         let mut nv = 0;
         for _ in 0..runs {

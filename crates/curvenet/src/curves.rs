@@ -39,11 +39,7 @@ impl CurveSpline {
     /// two consecutive samples equal).
     pub fn fit(points: &[DVec3], normals: &[DVec3], closed: bool) -> Self {
         let n = points.len();
-        let mut y: Vec<V6> = points
-            .iter()
-            .zip(normals)
-            .map(|(p, q)| [p.x, p.y, p.z, q.x, q.y, q.z])
-            .collect();
+        let mut y: Vec<V6> = points.iter().zip(normals).map(|(p, q)| [p.x, p.y, p.z, q.x, q.y, q.z]).collect();
         let mut t = Vec::with_capacity(n + 1);
         t.push(0.0);
         for i in 1..n {
@@ -53,18 +49,8 @@ impl CurveSpline {
             t.push(t[n - 1] + points[0].distance(points[n - 1]).max(f64::MIN_POSITIVE));
             y.push(y[0]);
         }
-        let m = if closed {
-            periodic_moments(&t, &y)
-        } else {
-            natural_moments(&t, &y)
-        };
-        let mut s = CurveSpline {
-            t,
-            y,
-            m,
-            arc: Vec::new(),
-            closed,
-        };
+        let m = if closed { periodic_moments(&t, &y) } else { natural_moments(&t, &y) };
+        let mut s = CurveSpline { t, y, m, arc: Vec::new(), closed };
         let mut arc = Vec::with_capacity(s.t.len());
         arc.push(0.0);
         for i in 0..s.t.len() - 1 {
@@ -125,8 +111,7 @@ impl CurveSpline {
         let d = (b * b * b - b) * h * h / 6.0;
         let mut out = [0.0; 6];
         for k in 0..6 {
-            out[k] =
-                a * self.y[i][k] + b * self.y[i + 1][k] + c * self.m[i][k] + d * self.m[i + 1][k];
+            out[k] = a * self.y[i][k] + b * self.y[i + 1][k] + c * self.m[i][k] + d * self.m[i + 1][k];
         }
         out
     }
@@ -137,8 +122,7 @@ impl CurveSpline {
         let b = 1.0 - a;
         let mut d = [0.0; 3];
         for (k, dk) in d.iter_mut().enumerate() {
-            *dk = (self.y[i + 1][k] - self.y[i][k]) / h
-                - (3.0 * a * a - 1.0) / 6.0 * h * self.m[i][k]
+            *dk = (self.y[i + 1][k] - self.y[i][k]) / h - (3.0 * a * a - 1.0) / 6.0 * h * self.m[i][k]
                 + (3.0 * b * b - 1.0) / 6.0 * h * self.m[i + 1][k];
         }
         DVec3::from_array(d)
@@ -172,11 +156,7 @@ impl CurveSpline {
 
     fn piece_arc(&self, i: usize, t0: f64, t1: f64) -> f64 {
         let (c, r) = (0.5 * (t0 + t1), 0.5 * (t1 - t0));
-        GAUSS5
-            .iter()
-            .map(|&(x, w)| w * self.deriv_pos(i, c + r * x).length())
-            .sum::<f64>()
-            * r
+        GAUSS5.iter().map(|&(x, w)| w * self.deriv_pos(i, c + r * x).length()).sum::<f64>() * r
     }
 
     /// Arc length from 0 to `t`, for `t` in `[0, 2T]` on closed curves (one extra period).
@@ -192,11 +172,7 @@ impl CurveSpline {
     /// Parameter at which the arc length from 0 equals `s` (Newton's method safeguarded by
     /// bisection inside the spline piece).
     pub fn param_at_arc_length(&self, s: f64) -> f64 {
-        let (s, offset) = if self.closed && s > self.length() {
-            (s - self.length(), self.period())
-        } else {
-            (s, 0.0)
-        };
+        let (s, offset) = if self.closed && s > self.length() { (s - self.length(), self.period()) } else { (s, 0.0) };
         let k = self.arc.len() - 1;
         let i = match self.arc.partition_point(|&x| x <= s) {
             0 => 0,
@@ -205,13 +181,7 @@ impl CurveSpline {
         let (mut lo, mut hi) = (self.t[i], self.t[i + 1]);
         let target = s - self.arc[i];
         let len = self.arc[i + 1] - self.arc[i];
-        let mut t = lo
-            + (hi - lo)
-                * if len > 0.0 {
-                    (target / len).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
+        let mut t = lo + (hi - lo) * if len > 0.0 { (target / len).clamp(0.0, 1.0) } else { 0.0 };
         for _ in 0..50 {
             let f = self.piece_arc(i, self.t[i], t) - target;
             if f.abs() <= 1e-13 * self.length().max(f64::MIN_POSITIVE) {
@@ -224,11 +194,7 @@ impl CurveSpline {
             }
             let d = self.deriv_pos(i, t).length();
             let newton = if d > 0.0 { t - f / d } else { f64::NAN };
-            t = if newton > lo && newton < hi {
-                newton
-            } else {
-                0.5 * (lo + hi)
-            };
+            t = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
             if hi - lo <= 1e-15 * self.period() {
                 break;
             }
@@ -249,10 +215,7 @@ impl CurveSpline {
         }
         let at = |k: usize| {
             let v = self.y[k];
-            (
-                DVec3::new(v[0], v[1], v[2]),
-                DVec3::new(v[3], v[4], v[5]).normalize(),
-            )
+            (DVec3::new(v[0], v[1], v[2]), DVec3::new(v[3], v[4], v[5]).normalize())
         };
         let mut out = Vec::with_capacity(pieces + 1);
         out.push(at(i0));
@@ -266,12 +229,7 @@ impl CurveSpline {
                 // the nearer sample's normal rather than producing a zero vector.
                 let tw = self.wrap(t);
                 let j = self.piece(tw);
-                n = at(if tw - self.t[j] < self.t[j + 1] - tw {
-                    j
-                } else {
-                    j + 1
-                })
-                .1;
+                n = at(if tw - self.t[j] < self.t[j + 1] - tw { j } else { j + 1 }).1;
             }
             out.push((DVec3::new(v[0], v[1], v[2]), n));
         }
@@ -419,9 +377,7 @@ pub fn resample_network(g: &crate::topology::Graph, splines: &[CurveSpline], d: 
     // join the same two nodes get ≥ 2 each.
     let mut parallel = std::collections::HashMap::new();
     for seg in &g.segments {
-        *parallel
-            .entry((seg.start.min(seg.end), seg.start.max(seg.end)))
-            .or_insert(0usize) += 1;
+        *parallel.entry((seg.start.min(seg.end), seg.start.max(seg.end))).or_insert(0usize) += 1;
     }
     let samples: Vec<Vec<(DVec3, DVec3)>> = g
         .segments

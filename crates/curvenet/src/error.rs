@@ -21,12 +21,7 @@ pub enum Error {
     /// A file is malformed. Occurs when a network file does not follow its format
     /// (see the README, "Formats"); `line` and `column` are 1-based.
     #[error("{path}:{line}:{column}: {message}")]
-    Parse {
-        path: String,
-        line: usize,
-        column: usize,
-        message: String,
-    },
+    Parse { path: String, line: usize, column: usize, message: String },
 
     /// The network's values are invalid: non-finite numbers, zero normals, too few samples,
     /// normals that disagree in orientation. The message names the curve and sample.
@@ -41,10 +36,7 @@ pub enum Error {
 
     /// A file could not be read or written.
     #[error("{path}: {source}")]
-    Io {
-        path: String,
-        source: std::io::Error,
-    },
+    Io { path: String, source: std::io::Error },
 
     /// An option value or a file name cannot be used (unknown extension, conflicting options).
     #[error("{0}")]
@@ -67,10 +59,7 @@ impl Error {
     }
 
     pub(crate) fn io(path: &std::path::Path, source: std::io::Error) -> Self {
-        Error::Io {
-            path: path.display().to_string(),
-            source,
-        }
+        Error::Io { path: path.display().to_string(), source }
     }
 }
 

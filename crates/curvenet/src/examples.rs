@@ -17,50 +17,18 @@ use std::f64::consts::{PI, TAU};
 
 /// Names and one-line descriptions of the bundled examples.
 pub const EXAMPLES: [(&str, &str); 7] = [
-    (
-        "sphere",
-        "unit sphere: 3 great circles (6 nodes, 12 segments, 8 patches)",
-    ),
-    (
-        "cube",
-        "unit sphere traced by the 12 edges of a cube (8 nodes, 12 segments, 6 patches)",
-    ),
-    (
-        "torus",
-        "torus R = 4, r = 2: 4 meridians and the outer and inner equators",
-    ),
-    (
-        "cylinder",
-        "two boundary circles (r = 1, z = ±1) with radial normals: a tube",
-    ),
-    (
-        "barrel",
-        "the cylinder's circles with normals tilted 30° outward: a barrel",
-    ),
-    (
-        "bottleneck",
-        "the cylinder's circles with normals tilted 30° inward: a bottleneck",
-    ),
-    (
-        "saddle",
-        "z = (x² − y²)/2 over the unit disk: boundary circle and the two axes",
-    ),
+    ("sphere", "unit sphere: 3 great circles (6 nodes, 12 segments, 8 patches)"),
+    ("cube", "unit sphere traced by the 12 edges of a cube (8 nodes, 12 segments, 6 patches)"),
+    ("torus", "torus R = 4, r = 2: 4 meridians and the outer and inner equators"),
+    ("cylinder", "two boundary circles (r = 1, z = ±1) with radial normals: a tube"),
+    ("barrel", "the cylinder's circles with normals tilted 30° outward: a barrel"),
+    ("bottleneck", "the cylinder's circles with normals tilted 30° inward: a bottleneck"),
+    ("saddle", "z = (x² − y²)/2 over the unit disk: boundary circle and the two axes"),
 ];
 
-fn curve(
-    name: &str,
-    closed: bool,
-    boundary: bool,
-    samples: impl Iterator<Item = (DVec3, DVec3)>,
-) -> Curve {
+fn curve(name: &str, closed: bool, boundary: bool, samples: impl Iterator<Item = (DVec3, DVec3)>) -> Curve {
     let (points, normals) = samples.unzip();
-    Curve {
-        name: Some(name.to_string()),
-        points,
-        normals,
-        closed,
-        boundary,
-    }
+    Curve { name: Some(name.to_string()), points, normals, closed, boundary }
 }
 
 /// `n` parameters `a + (b − a) k / n`, `k = 0..n` (closed: the end excluded) or `0..=n`.
@@ -81,12 +49,7 @@ fn sphere() -> Network {
         curves: circles
             .iter()
             .map(|(name, f)| {
-                curve(
-                    name,
-                    true,
-                    false,
-                    params(0.0, TAU, n, true).map(|t| (f(t.cos(), t.sin()), f(t.cos(), t.sin()))),
-                )
+                curve(name, true, false, params(0.0, TAU, n, true).map(|t| (f(t.cos(), t.sin()), f(t.cos(), t.sin()))))
             })
             .collect(),
         snap: None,
@@ -94,15 +57,8 @@ fn sphere() -> Network {
 }
 
 fn cube() -> Network {
-    let corners: Vec<DVec3> = (0..8)
-        .map(|i| {
-            DVec3::new(
-                [-1.0, 1.0][i & 1],
-                [-1.0, 1.0][(i >> 1) & 1],
-                [-1.0, 1.0][(i >> 2) & 1],
-            )
-        })
-        .collect();
+    let corners: Vec<DVec3> =
+        (0..8).map(|i| DVec3::new([-1.0, 1.0][i & 1], [-1.0, 1.0][(i >> 1) & 1], [-1.0, 1.0][(i >> 2) & 1])).collect();
     let mut curves = Vec::new();
     for a in 0..8 {
         for bit in [1, 2, 4] {
@@ -124,16 +80,8 @@ fn cube() -> Network {
 
 /// Torus point and outward normal at angles `(φ, θ)` (axis z).
 pub(crate) fn torus_point(big_r: f64, r: f64, phi: f64, theta: f64) -> (DVec3, DVec3) {
-    let n = DVec3::new(
-        theta.cos() * phi.cos(),
-        theta.cos() * phi.sin(),
-        theta.sin(),
-    );
-    let p = DVec3::new(
-        (big_r + r * theta.cos()) * phi.cos(),
-        (big_r + r * theta.cos()) * phi.sin(),
-        r * theta.sin(),
-    );
+    let n = DVec3::new(theta.cos() * phi.cos(), theta.cos() * phi.sin(), theta.sin());
+    let p = DVec3::new((big_r + r * theta.cos()) * phi.cos(), (big_r + r * theta.cos()) * phi.sin(), r * theta.sin());
     (p, n)
 }
 
@@ -155,12 +103,7 @@ pub fn torus(big_r: f64, r: f64) -> Network {
         false,
         params(0.0, TAU, 192, true).map(|t| torus_point(big_r, r, t, 0.0)),
     ));
-    curves.push(curve(
-        "inner equator",
-        true,
-        false,
-        params(0.0, TAU, 64, true).map(|t| torus_point(big_r, r, t, PI)),
-    ));
+    curves.push(curve("inner equator", true, false, params(0.0, TAU, 64, true).map(|t| torus_point(big_r, r, t, PI))));
     Network { curves, snap: None }
 }
 
@@ -175,47 +118,21 @@ pub fn tube(tilt: f64) -> Network {
             true,
             params(0.0, TAU, 64, true).map(move |t| {
                 let radial = DVec3::new(t.cos(), t.sin(), 0.0);
-                (
-                    radial + DVec3::Z * z,
-                    tilt.cos() * radial + up * tilt.sin() * DVec3::Z,
-                )
+                (radial + DVec3::Z * z, tilt.cos() * radial + up * tilt.sin() * DVec3::Z)
             }),
         )
     };
-    Network {
-        curves: vec![ring(1.0, "top"), ring(-1.0, "bottom")],
-        snap: None,
-    }
+    Network { curves: vec![ring(1.0, "top"), ring(-1.0, "bottom")], snap: None }
 }
 
 fn saddle() -> Network {
     let f = |x: f64, y: f64| 0.5 * (x * x - y * y);
-    let sample = move |x: f64, y: f64| {
-        (
-            DVec3::new(x, y, f(x, y)),
-            DVec3::new(-x, y, 1.0).normalize(),
-        )
-    };
+    let sample = move |x: f64, y: f64| (DVec3::new(x, y, f(x, y)), DVec3::new(-x, y, 1.0).normalize());
     Network {
         curves: vec![
-            curve(
-                "rim",
-                true,
-                true,
-                params(0.0, TAU, 128, true).map(move |t| sample(t.cos(), t.sin())),
-            ),
-            curve(
-                "x axis",
-                false,
-                false,
-                params(-1.0, 1.0, 64, false).map(move |x| sample(x, 0.0)),
-            ),
-            curve(
-                "y axis",
-                false,
-                false,
-                params(-1.0, 1.0, 64, false).map(move |y| sample(0.0, y)),
-            ),
+            curve("rim", true, true, params(0.0, TAU, 128, true).map(move |t| sample(t.cos(), t.sin()))),
+            curve("x axis", false, false, params(-1.0, 1.0, 64, false).map(move |x| sample(x, 0.0))),
+            curve("y axis", false, false, params(-1.0, 1.0, 64, false).map(move |y| sample(0.0, y))),
         ],
         snap: None,
     }
@@ -238,14 +155,8 @@ pub fn example(name: &str) -> Option<Network> {
 /// The analytic surface the example `name` samples, where there is one.
 pub fn example_truth(name: &str) -> Option<Truth> {
     Some(match name {
-        "sphere" | "cube" => Truth::Sphere {
-            center: DVec3::ZERO,
-            radius: 1.0,
-        },
-        "torus" => Truth::Torus {
-            major: 4.0,
-            minor: 2.0,
-        },
+        "sphere" | "cube" => Truth::Sphere { center: DVec3::ZERO, radius: 1.0 },
+        "torus" => Truth::Torus { major: 4.0, minor: 2.0 },
         "cylinder" => Truth::Cylinder { radius: 1.0 },
         "saddle" => Truth::Saddle,
         _ => return None,

@@ -13,10 +13,7 @@ pub struct Aabb {
 impl Aabb {
     /// The empty box (min = +inf, max = −inf); `extend` grows it.
     pub fn empty() -> Self {
-        Aabb {
-            min: DVec3::splat(f64::INFINITY),
-            max: DVec3::splat(f64::NEG_INFINITY),
-        }
+        Aabb { min: DVec3::splat(f64::INFINITY), max: DVec3::splat(f64::NEG_INFINITY) }
     }
 
     /// Bounding box of `points`; empty when `points` is.
@@ -85,11 +82,7 @@ pub fn closest_params_segment_segment(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3
     }
     let b = d1.dot(d2);
     let denom = a * e - b * b;
-    let mut s = if denom > 1e-14 * a * e {
-        ((b * f - c * e) / denom).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
+    let mut s = if denom > 1e-14 * a * e { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
     let mut t = (b * s + f) / e;
     if t < 0.0 {
         t = 0.0;

@@ -42,7 +42,7 @@ pub mod tessellate;
 pub mod topology;
 
 pub use error::{Error, Result, Warning};
-pub use methods::{Method, Weighting};
+pub use methods::{GuideArea, Method, Weighting};
 pub use network::{Curve, Network};
 pub use operators::Metric;
 pub use pipeline::{surface, surface_with_progress, Options, Stats, Surface, Timings};

@@ -38,8 +38,6 @@ impl Mesh {
 
     /// `true` for curve vertices, `#V` (the PLY `curve` flag).
     pub fn curve_flags(&self) -> Vec<bool> {
-        (0..self.positions.len())
-            .map(|i| i < self.num_curve)
-            .collect()
+        (0..self.positions.len()).map(|i| i < self.num_curve).collect()
     }
 }

@@ -32,9 +32,7 @@ impl Truth {
     /// The closest point of the surface to `p`.
     pub fn closest_point(&self, p: DVec3) -> DVec3 {
         match *self {
-            Truth::Sphere { center, radius } => {
-                center + (p - center).normalize_or(DVec3::X) * radius
-            }
+            Truth::Sphere { center, radius } => center + (p - center).normalize_or(DVec3::X) * radius,
             Truth::Torus { major, minor } => {
                 let q = DVec3::new(p.x, p.y, 0.0).normalize_or(DVec3::X) * major;
                 q + (p - q).normalize_or(DVec3::Z) * minor
@@ -73,9 +71,9 @@ impl Truth {
         let q = self.closest_point(p);
         match *self {
             Truth::Sphere { center, .. } => (q - center).normalize_or(DVec3::Z),
-            Truth::Torus { major, .. } => (q - DVec3::new(q.x, q.y, 0.0).normalize_or(DVec3::X)
-                * major)
-                .normalize_or(DVec3::Z),
+            Truth::Torus { major, .. } => {
+                (q - DVec3::new(q.x, q.y, 0.0).normalize_or(DVec3::X) * major).normalize_or(DVec3::Z)
+            }
             Truth::Cylinder { .. } => DVec3::new(q.x, q.y, 0.0).normalize_or(DVec3::X),
             Truth::Saddle => DVec3::new(-q.x, q.y, 1.0).normalize(),
         }
@@ -105,40 +103,22 @@ impl DistanceStats {
         if n == 0 {
             return Self::default();
         }
-        DistanceStats {
-            count: n,
-            min,
-            max,
-            mean: sum / n as f64,
-            rms: (sq / n as f64).sqrt(),
-        }
+        DistanceStats { count: n, min, max, mean: sum / n as f64, rms: (sq / n as f64).sqrt() }
     }
 }
 
 /// Distances of the vertices `first..` (the free vertices when `first` is the number of curve
 /// vertices, as in [CG] Table 1) to `truth`.
 pub fn distance_to_truth(positions: &[DVec3], first: usize, truth: &Truth) -> DistanceStats {
-    DistanceStats::of(
-        positions[first.min(positions.len())..]
-            .iter()
-            .map(|p| truth.distance(*p)),
-    )
+    DistanceStats::of(positions[first.min(positions.len())..].iter().map(|p| truth.distance(*p)))
 }
 
 /// Angles in degrees between `normals` and the true normals, over vertices `first..`.
-pub fn normal_angles_to_truth(
-    positions: &[DVec3],
-    normals: &[DVec3],
-    first: usize,
-    truth: &Truth,
-) -> DistanceStats {
-    DistanceStats::of((first.min(positions.len())..positions.len()).map(|i| {
-        normals[i]
-            .dot(truth.normal(positions[i]))
-            .clamp(-1.0, 1.0)
-            .acos()
-            .to_degrees()
-    }))
+pub fn normal_angles_to_truth(positions: &[DVec3], normals: &[DVec3], first: usize, truth: &Truth) -> DistanceStats {
+    DistanceStats::of(
+        (first.min(positions.len())..positions.len())
+            .map(|i| normals[i].dot(truth.normal(positions[i])).clamp(-1.0, 1.0).acos().to_degrees()),
+    )
 }
 
 /// Closest point to `p` on the triangle `abc` (Ericson, *Real-Time Collision Detection*,
@@ -191,20 +171,10 @@ impl<'a> MeshDistance<'a> {
         let bb = crate::geom::Aabb::of(faces.iter().flatten().map(|&i| positions[i as usize]));
         let ext = (bb.max - bb.min).max(DVec3::splat(1e-300));
         let volume_cells = (faces.len().max(1) as f64).max(1.0);
-        let cell = (ext.x * ext.y * ext.z / volume_cells)
-            .cbrt()
-            .max(ext.max_element() / 256.0)
-            .max(1e-300);
+        let cell = (ext.x * ext.y * ext.z / volume_cells).cbrt().max(ext.max_element() / 256.0).max(1e-300);
         let dims = [0, 1, 2].map(|k| ((ext[k] / cell).ceil() as usize).clamp(1, 512));
         let mut cells = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
-        let me = MeshDistance {
-            positions,
-            faces,
-            origin: bb.min,
-            cell,
-            dims,
-            cells: Vec::new(),
-        };
+        let me = MeshDistance { positions, faces, origin: bb.min, cell, dims, cells: Vec::new() };
         for (fi, f) in faces.iter().enumerate() {
             let tb = crate::geom::Aabb::of(f.iter().map(|&i| positions[i as usize]));
             let (lo, hi) = (me.cell_of(tb.min), me.cell_of(tb.max));
@@ -232,8 +202,7 @@ impl<'a> MeshDistance<'a> {
         for ring in 0..=max_ring {
             // Every point in rings beyond `ring` is at least this far away.
             let outside = (p - self.origin) / self.cell;
-            let inside_grid =
-                (0..3).all(|k| outside[k] >= 0.0 && outside[k] <= self.dims[k] as f64);
+            let inside_grid = (0..3).all(|k| outside[k] >= 0.0 && outside[k] <= self.dims[k] as f64);
             if inside_grid && ring > 0 && best.0 <= (ring as f64 - 1.0) * self.cell {
                 break;
             }
@@ -242,10 +211,7 @@ impl<'a> MeshDistance<'a> {
             for x in lo[0]..=hi[0] {
                 for y in lo[1]..=hi[1] {
                     for z in lo[2]..=hi[2] {
-                        let on_shell = [x, y, z]
-                            .iter()
-                            .zip(c.iter())
-                            .any(|(&v, &cc)| v.abs_diff(cc) == ring);
+                        let on_shell = [x, y, z].iter().zip(c.iter()).any(|(&v, &cc)| v.abs_diff(cc) == ring);
                         if !on_shell {
                             continue;
                         }

@@ -54,8 +54,7 @@ impl Network {
 
     /// The snapping tolerance in effect: `snap` or the relative default.
     pub fn snap_tolerance(&self) -> f64 {
-        self.snap
-            .unwrap_or_else(|| Self::DEFAULT_SNAP_RELATIVE * self.bounding_box().diagonal())
+        self.snap.unwrap_or_else(|| Self::DEFAULT_SNAP_RELATIVE * self.bounding_box().diagonal())
     }
 
     /// Total number of samples.
@@ -158,10 +157,7 @@ impl Network {
                     if merged.len() > 5 { ", …" } else { "" }
                 )));
             }
-            if c.closed
-                && points.len() > 1
-                && points[0].distance(points[points.len() - 1]) <= dup_tol
-            {
+            if c.closed && points.len() > 1 && points[0].distance(points[points.len() - 1]) <= dup_tol {
                 points.pop();
                 normals.pop();
                 warnings.push(Warning(format!(
@@ -176,21 +172,9 @@ impl Network {
                     if c.closed { " closed" } else { "n open" }
                 )));
             }
-            curves.push(Curve {
-                name: c.name.clone(),
-                points,
-                normals,
-                closed: c.closed,
-                boundary: c.boundary,
-            });
+            curves.push(Curve { name: c.name.clone(), points, normals, closed: c.closed, boundary: c.boundary });
         }
-        Ok((
-            Network {
-                curves,
-                snap: self.snap,
-            },
-            warnings,
-        ))
+        Ok((Network { curves, snap: self.snap }, warnings))
     }
 }
 

@@ -44,9 +44,7 @@ fn corner_terms(p: [DVec3; 3]) -> ([f64; 3], [f64; 3]) {
         let v = p[(k + 2) % 3] - a;
         let c = u.cross(v).length();
         cross_len = c;
-        cot[k] = u.dot(v)
-            / c.max(1e-12 * u.length() * v.length())
-                .max(f64::MIN_POSITIVE);
+        cot[k] = u.dot(v) / c.max(1e-12 * u.length() * v.length()).max(f64::MIN_POSITIVE);
     }
     let area = 0.5 * cross_len;
     // Mixed areas (Meyer, Desbrun, Schröder, Barr 2003): Voronoi areas for non-obtuse
@@ -60,8 +58,7 @@ fn corner_terms(p: [DVec3; 3]) -> ([f64; 3], [f64; 3]) {
         for (k, s) in share.iter_mut().enumerate() {
             let (i, j) = ((k + 1) % 3, (k + 2) % 3);
             // |p_k p_i|² cot(angle at j) + |p_k p_j|² cot(angle at i), over 8.
-            *s =
-                (p[k].distance_squared(p[i]) * cot[j] + p[k].distance_squared(p[j]) * cot[i]) / 8.0;
+            *s = (p[k].distance_squared(p[i]) * cot[j] + p[k].distance_squared(p[j]) * cot[i]) / 8.0;
         }
     }
     (cot, share)
@@ -96,13 +93,8 @@ fn laplacian_pattern(n: usize, faces: &[[u32; 3]]) -> Csc {
         }
     }
     // Sort and deduplicate each column, then compact.
-    let mut out = Csc {
-        nrows: n,
-        ncols: n,
-        col_ptr: Vec::with_capacity(n + 1),
-        row_idx: Vec::new(),
-        values: Vec::new(),
-    };
+    let mut out =
+        Csc { nrows: n, ncols: n, col_ptr: Vec::with_capacity(n + 1), row_idx: Vec::new(), values: Vec::new() };
     out.col_ptr.push(0);
     for j in 0..n {
         let col = &mut rows[col_ptr[j]..fill[j]];
@@ -133,11 +125,7 @@ pub fn cotan_operators(mesh: &Mesh, metric: Metric, positions: &[DVec3]) -> Oper
                 let q = mesh.planar[fi];
                 [lift(q[0]), lift(q[1]), lift(q[2])]
             }
-            Metric::Surface => [
-                positions[f[0] as usize],
-                positions[f[1] as usize],
-                positions[f[2] as usize],
-            ],
+            Metric::Surface => [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]],
         };
         let (cot, share) = corner_terms(p);
         for k in 0..3 {
@@ -165,11 +153,7 @@ fn add(m: &mut Csc, i: usize, j: usize, v: f64) {
 pub fn mixed_areas(faces: &[[u32; 3]], positions: &[DVec3]) -> Vec<f64> {
     let mut a = vec![0.0; positions.len()];
     for f in faces {
-        let (_, share) = corner_terms([
-            positions[f[0] as usize],
-            positions[f[1] as usize],
-            positions[f[2] as usize],
-        ]);
+        let (_, share) = corner_terms([positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]]);
         for k in 0..3 {
             a[f[k] as usize] += share[k];
         }
@@ -181,11 +165,7 @@ pub fn mixed_areas(faces: &[[u32; 3]], positions: &[DVec3]) -> Vec<f64> {
 pub fn vertex_normals(faces: &[[u32; 3]], positions: &[DVec3]) -> Vec<DVec3> {
     let mut n = vec![DVec3::ZERO; positions.len()];
     for f in faces {
-        let [a, b, c] = [
-            positions[f[0] as usize],
-            positions[f[1] as usize],
-            positions[f[2] as usize],
-        ];
+        let [a, b, c] = [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]];
         let fnrm = (b - a).cross(c - a);
         for &i in f {
             n[i as usize] += fnrm;
@@ -202,11 +182,7 @@ pub fn cotan_mean_curvature(faces: &[[u32; 3]], positions: &[DVec3], skip: &[boo
     let mut lv = vec![DVec3::ZERO; n];
     let mut mass = vec![0.0; n];
     for f in faces {
-        let p = [
-            positions[f[0] as usize],
-            positions[f[1] as usize],
-            positions[f[2] as usize],
-        ];
+        let p = [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]];
         let (cot, share) = corner_terms(p);
         for k in 0..3 {
             let (i, j) = (f[(k + 1) % 3] as usize, f[(k + 2) % 3] as usize);
@@ -232,18 +208,23 @@ pub fn cotan_mean_curvature(faces: &[[u32; 3]], positions: &[DVec3], skip: &[boo
 ///
 /// `h(v) = 1/(4A) Σᵢ (n + nᵢ + nᵢ₊₁)/‖n + nᵢ + nᵢ₊₁‖ × (vᵢ₊₁ − vᵢ)`,
 ///
-/// summed over the edges `vᵢ → vᵢ₊₁` opposite to `v` in its one-ring (counter-clockwise), `A`
-/// the mixed Voronoi area of `v` on the surface `V*`. `h ≈ H n`; the returned scalar is the
-/// **signed** `H = h · n*(v)` (DESIGN §1: the papers' `‖h‖` loses the sign). Vertices in `skip`
-/// (open boundary: incomplete ring) get 0.
+/// summed over the edges `vᵢ → vᵢ₊₁` opposite to `v` in its one-ring (counter-clockwise), with
+/// `A = area[v]` the Voronoi area of `v`. `h ≈ H n` when `area` is measured on the surface
+/// `V*` ([`mixed_areas`]); the returned scalar is the **signed** `H = h · n*(v)` (DESIGN §1: the
+/// papers' `‖h‖` loses the sign). Vertices in `skip` (open boundary: incomplete ring) get 0.
+///
+/// Which area to use is a modelling choice: with the planar metric of [CG] §3.4, dividing by
+/// the *planar* Voronoi area (the `M` of the Laplacian) scales `h` by the local area ratio of
+/// the projection, exactly as the planar Laplacian scales `ΔV`, so the fit `L V = −2 H N*`
+/// stays consistent to first order (see [`crate::methods::normal_control`]).
 pub fn blended_mean_curvature(
     faces: &[[u32; 3]],
     positions: &[DVec3],
     normals: &[DVec3],
+    area: &[f64],
     skip: &[bool],
 ) -> Vec<f64> {
     let n = positions.len();
-    let area = mixed_areas(faces, positions);
     let mut h = vec![DVec3::ZERO; n];
     for f in faces {
         for k in 0..3 {

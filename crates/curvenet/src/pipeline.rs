@@ -8,7 +8,7 @@ use crate::io::MeshData;
 use crate::mesh::Mesh;
 use crate::methods::normal_control::{normal_control, NormalControlParams};
 use crate::methods::polyharmonic::polyharmonic;
-use crate::methods::{Method, MethodResult, SolveTimings, Weighting};
+use crate::methods::{GuideArea, Method, MethodResult, SolveTimings, Weighting};
 use crate::network::Network;
 use crate::operators::{cotan_mean_curvature, cotan_operators, vertex_normals, Metric};
 use crate::tessellate::{tessellate, VERTICES_PER_AREA};
@@ -40,6 +40,10 @@ pub struct Options {
     pub weights: Metric,
     /// `--energy`: weighting of the normal-control energy (DESIGN §1). Default: area.
     pub energy: Weighting,
+    /// `--guide-area`: the area dividing the mean-curvature guide ([CG] eq. 1): the
+    /// Laplacian's own (default, consistent with the fit) or that of the propagated surface
+    /// (the paper's wording).
+    pub guide_area: GuideArea,
     /// `--snap S`: snapping tolerance for curves meeting between samples; overrides the
     /// network's `snap`. Default: 1e-3 × the bounding-box diagonal.
     pub snap: Option<f64>,
@@ -61,6 +65,7 @@ impl Default for Options {
             soft: None,
             weights: Metric::Planar,
             energy: Weighting::Area,
+            guide_area: GuideArea::Mass,
             snap: None,
         }
     }
@@ -144,9 +149,7 @@ fn components(g: &Graph) -> usize {
         let (a, b) = (find(&mut parent, s.start), find(&mut parent, s.end));
         parent[a.max(b)] = a.min(b);
     }
-    (0..g.nodes.len())
-        .filter(|&i| find(&mut parent, i) == i)
-        .count()
+    (0..g.nodes.len()).filter(|&i| find(&mut parent, i) == i).count()
 }
 
 /// Sizes that predict the vertex count: free vertices ≈ `c A / d²` over the patches' projected
@@ -158,16 +161,9 @@ struct SizeModel {
 
 impl SizeModel {
     fn new(g: &Graph, splines: &[CurveSpline], patches: &[Patch]) -> Self {
-        let length: f64 = g
-            .segments
-            .iter()
-            .map(|s| splines[s.curve].arc_between(s.first, s.last))
-            .sum();
+        let length: f64 = g.segments.iter().map(|s| splines[s.curve].arc_between(s.first, s.last)).sum();
         let samples = |hs: &[crate::topology::HalfEdge]| -> Vec<DVec3> {
-            hs.iter()
-                .flat_map(|&h| half_edge_samples(g, h))
-                .map(|x| x.0)
-                .collect()
+            hs.iter().flat_map(|&h| half_edge_samples(g, h)).map(|x| x.0).collect()
         };
         let area: f64 = patches
             .iter()
@@ -175,20 +171,13 @@ impl SizeModel {
                 Patch::Disk(hs) => crate::geom::polygon_vector_area(&samples(hs)).length(),
                 Patch::Tube([a, b]) => {
                     let (la, lb) = (samples(a), samples(b));
-                    let len = |v: &[DVec3]| {
-                        (0..v.len())
-                            .map(|i| v[i].distance(v[(i + 1) % v.len()]))
-                            .sum::<f64>()
-                    };
+                    let len = |v: &[DVec3]| (0..v.len()).map(|i| v[i].distance(v[(i + 1) % v.len()])).sum::<f64>();
                     let c = |v: &[DVec3]| v.iter().sum::<DVec3>() / v.len() as f64;
                     0.5 * (len(&la) + len(&lb)) * c(&la).distance(c(&lb))
                 }
             })
             .sum();
-        SizeModel {
-            area: VERTICES_PER_AREA * area,
-            length,
-        }
+        SizeModel { area: VERTICES_PER_AREA * area, length }
     }
 
     fn vertices(&self, d: f64) -> f64 {
@@ -198,11 +187,7 @@ impl SizeModel {
     /// The spacing that gives about `target` vertices (`n = c A x² + ℓ x`, `x = 1/d`).
     fn spacing(&self, target: usize) -> f64 {
         let (ca, l, n) = (self.area, self.length, target.max(10) as f64);
-        let x = if ca > 0.0 {
-            (-l + (l * l + 4.0 * ca * n).sqrt()) / (2.0 * ca)
-        } else {
-            n / l
-        };
+        let x = if ca > 0.0 { (-l + (l * l + 4.0 * ca * n).sqrt()) / (2.0 * ca) } else { n / l };
         1.0 / x
     }
 }
@@ -217,9 +202,7 @@ pub fn surface_with_progress(
     let mut timings = Timings::default();
     if let Some(d) = options.spacing {
         if !(d.is_finite() && d > 0.0) {
-            return Err(Error::Usage(format!(
-                "spacing {d} is not a positive distance"
-            )));
+            return Err(Error::Usage(format!("spacing {d} is not a positive distance")));
         }
     }
     if options.vertices == Some(0) {
@@ -227,9 +210,7 @@ pub fn surface_with_progress(
     }
     if let Some(w) = options.soft {
         if !(w.is_finite() && w > 0.0) {
-            return Err(Error::Usage(format!(
-                "soft-constraint weight {w} is not a positive number"
-            )));
+            return Err(Error::Usage(format!("soft-constraint weight {w} is not a positive number")));
         }
         if options.method != Method::NormalControl {
             return Err(Error::Usage(format!(
@@ -240,44 +221,28 @@ pub fn surface_with_progress(
     }
     if let Some(s) = options.snap {
         if !(s.is_finite() && s > 0.0) {
-            return Err(Error::Usage(format!(
-                "snapping tolerance {s} is not a positive distance"
-            )));
+            return Err(Error::Usage(format!("snapping tolerance {s} is not a positive distance")));
         }
     }
 
     // Nodes and segments.
     let clock = Instant::now();
     let (net, mut warnings) = network.validated()?;
-    let snap = options
-        .snap
-        .or(net.snap)
-        .unwrap_or_else(|| net.snap_tolerance());
+    let snap = options.snap.or(net.snap).unwrap_or_else(|| net.snap_tolerance());
     let (g, w) = find_nodes(&net, snap)?;
     warnings.extend(w);
     timings.nodes = clock.elapsed().as_secs_f64();
-    progress(
-        "nodes",
-        timings.nodes,
-        &format!("{} nodes, {} segments", g.nodes.len(), g.segments.len()),
-    );
+    progress("nodes", timings.nodes, &format!("{} nodes, {} segments", g.nodes.len(), g.segments.len()));
 
     // Splines (needed for the tangents at nodes) and cycles.
     let clock = Instant::now();
-    let splines: Vec<CurveSpline> = g
-        .curves
-        .par_iter()
-        .map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed))
-        .collect();
+    let splines: Vec<CurveSpline> =
+        g.curves.par_iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
     let spline_time = clock.elapsed().as_secs_f64();
     let clock = Instant::now();
     let patches = find_patches(&g, &splines)?;
     timings.cycles = clock.elapsed().as_secs_f64();
-    progress(
-        "cycles",
-        timings.cycles,
-        &format!("{} patches", patches.len()),
-    );
+    progress("cycles", timings.cycles, &format!("{} patches", patches.len()));
 
     // Spacing and resampling.
     let clock = Instant::now();
@@ -295,11 +260,7 @@ pub fn surface_with_progress(
     }
     let res = resample_network(&g, &splines, d);
     timings.resample = spline_time + clock.elapsed().as_secs_f64();
-    progress(
-        "resample",
-        timings.resample,
-        &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()),
-    );
+    progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
 
     let clock = Instant::now();
     let mesh = tessellate(&g, &res, &patches, d)?;
@@ -307,27 +268,18 @@ pub fn surface_with_progress(
     progress(
         "tessellate",
         timings.tessellate,
-        &format!(
-            "{} vertices, {} faces",
-            mesh.num_vertices(),
-            mesh.faces.len()
-        ),
+        &format!("{} vertices, {} faces", mesh.num_vertices(), mesh.faces.len()),
     );
 
     // Solve.
     let mut st = SolveTimings::default();
     let ell = net.bounding_box().diagonal();
-    let run = |metric_positions: &[DVec3],
-               metric: Metric,
-               st: &mut SolveTimings|
-     -> Result<MethodResult> {
+    let run = |metric_positions: &[DVec3], metric: Metric, st: &mut SolveTimings| -> Result<MethodResult> {
         let clock = Instant::now();
         let ops = cotan_operators(&mesh, metric, metric_positions);
         st.operators += clock.elapsed().as_secs_f64();
         if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
-            return Err(Error::Numerical(format!(
-                "vertex {i} has zero area: degenerate triangles around it"
-            )));
+            return Err(Error::Numerical(format!("vertex {i} has zero area: degenerate triangles around it")));
         }
         match options.method {
             Method::NormalControl => {
@@ -335,18 +287,13 @@ pub fn surface_with_progress(
                     let base = w * d / (ell * ell * ell);
                     match options.energy {
                         Weighting::Area => base,
-                        Weighting::Uniform => {
-                            base * ops.mass.len() as f64 / ops.mass.iter().sum::<f64>()
-                        }
+                        Weighting::Uniform => base * ops.mass.len() as f64 / ops.mass.iter().sum::<f64>(),
                     }
                 });
                 normal_control(
                     &mesh,
                     &ops,
-                    &NormalControlParams {
-                        weighting: options.energy,
-                        soft_weight,
-                    },
+                    &NormalControlParams { weighting: options.energy, guide_area: options.guide_area, soft_weight },
                     st,
                 )
             }
@@ -361,11 +308,7 @@ pub fn surface_with_progress(
     timings.operators = st.operators;
     timings.factor = st.factor;
     timings.solve = st.solve;
-    progress(
-        "solve",
-        st.operators + st.factor + st.solve,
-        options.method.name(),
-    );
+    progress("solve", st.operators + st.factor + st.solve, options.method.name());
 
     let clock = Instant::now();
     let mut mesh = mesh;

@@ -7,8 +7,7 @@ use crate::sparse::Csc;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
-    SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
 };
 use faer::{Conj, MatMut, Par, Side};
 
@@ -26,9 +25,7 @@ impl Cholesky {
     /// with no constrained vertex, degenerate triangles) or too large to index.
     pub fn factor(q: &Csc, what: &str) -> Result<Self> {
         let a = q.to_faer().ok_or_else(|| {
-            Error::Numerical(format!(
-                "{what}: the system has too many non-zeros to index with 32 bits"
-            ))
+            Error::Numerical(format!("{what}: the system has too many non-zeros to index with 32 bits"))
         })?;
         let symbolic = factorize_symbolic_cholesky(
             a.symbolic(),
@@ -39,10 +36,8 @@ impl Cholesky {
         .map_err(|e| Error::Numerical(format!("{what}: symbolic factorisation failed ({e:?})")))?;
         let mut values = vec![0.0; symbolic.len_val()];
         let par = Par::Seq;
-        let mut mem = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-        )
-        .map_err(|_| Error::Numerical(format!("{what}: out of memory for the factorisation")))?;
+        let mut mem = MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
+            .map_err(|_| Error::Numerical(format!("{what}: out of memory for the factorisation")))?;
         symbolic
             .factorize_numeric_llt(
                 &mut values,
@@ -60,9 +55,7 @@ impl Cholesky {
                 ))
             })?;
         if values.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Numerical(format!(
-                "{what}: the factorisation produced non-finite values"
-            )));
+            return Err(Error::Numerical(format!("{what}: the factorisation produced non-finite values")));
         }
         Ok(Cholesky { symbolic, values })
     }

@@ -68,18 +68,8 @@ impl Csc {
 
     /// The matrix as a faer sparse matrix (for factorisation).
     pub fn to_faer(&self) -> Option<SparseColMat<u32, f64>> {
-        let col_ptr: Vec<u32> = self
-            .col_ptr
-            .iter()
-            .map(|&p| u32::try_from(p).ok())
-            .collect::<Option<_>>()?;
-        let sym = SymbolicSparseColMat::new_checked(
-            self.nrows,
-            self.ncols,
-            col_ptr,
-            None,
-            self.row_idx.clone(),
-        );
+        let col_ptr: Vec<u32> = self.col_ptr.iter().map(|&p| u32::try_from(p).ok()).collect::<Option<_>>()?;
+        let sym = SymbolicSparseColMat::new_checked(self.nrows, self.ncols, col_ptr, None, self.row_idx.clone());
         Some(SparseColMat::new(sym, self.values.clone()))
     }
 }
@@ -137,13 +127,8 @@ pub fn product(a: &Csc, d: &[f64], b: &Csc, first: usize) -> Csc {
             (counts, rows, vals)
         })
         .collect();
-    let mut out = Csc {
-        nrows: m,
-        ncols: m,
-        col_ptr: Vec::with_capacity(m + 1),
-        row_idx: Vec::new(),
-        values: Vec::new(),
-    };
+    let mut out =
+        Csc { nrows: m, ncols: m, col_ptr: Vec::with_capacity(m + 1), row_idx: Vec::new(), values: Vec::new() };
     let total: usize = chunks.iter().map(|c| c.1.len()).sum();
     out.row_idx.reserve_exact(total);
     out.values.reserve_exact(total);

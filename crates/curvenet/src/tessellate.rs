@@ -12,9 +12,7 @@ use crate::geom::{fmt_point, plane_frame, polygon_signed_area, polygon_vector_ar
 use crate::mesh::Mesh;
 use crate::topology::{Graph, HalfEdge, Patch};
 use rayon::prelude::*;
-use spade::{
-    AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
-};
+use spade::{AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation};
 
 /// Minimum angle the refinement aims for, in degrees.
 pub const MIN_ANGLE_DEG: f64 = 25.0;
@@ -55,10 +53,7 @@ fn loop_vertices(res: &Resampled, hs: &[HalfEdge]) -> Vec<u32> {
 }
 
 fn describe_patch(g: &Graph, hs: &[HalfEdge]) -> String {
-    let mut curves: Vec<&str> = hs
-        .iter()
-        .map(|h| g.labels[g.segments[h.segment].curve].as_str())
-        .collect();
+    let mut curves: Vec<&str> = hs.iter().map(|h| g.labels[g.segments[h.segment].curve].as_str()).collect();
     curves.dedup();
     let mut s = curves.join(", ");
     if s.len() > 200 {
@@ -78,10 +73,7 @@ fn triangulate(
 ) -> Result<(Vec<[usize; 3]>, Vec<DVec2>, Vec<VRef>)> {
     let n = pts.len();
     if n < 3 {
-        return Err(Error::Topology(format!(
-            "{}: a patch needs at least 3 boundary vertices",
-            what()
-        )));
+        return Err(Error::Topology(format!("{}: a patch needs at least 3 boundary vertices", what())));
     }
     let area = polygon_signed_area(&pts);
     if !(area > 0.0) {
@@ -94,16 +86,11 @@ fn triangulate(
     let vertices: Vec<Point2<f64>> = pts.iter().map(|p| Point2::new(p.x, p.y)).collect();
     let edges: Vec<[usize; 2]> = (0..n).map(|i| [i, (i + 1) % n]).collect();
     let mut conflict = None;
-    let cdt =
-        ConstrainedDelaunayTriangulation::<Point2<f64>>::try_bulk_load_cdt(vertices, edges, |e| {
-            conflict.get_or_insert(e);
-        });
-    let mut cdt = cdt.map_err(|e| {
-        Error::Topology(format!(
-            "{}: the projected cycle cannot be triangulated ({e:?})",
-            what()
-        ))
-    })?;
+    let cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::try_bulk_load_cdt(vertices, edges, |e| {
+        conflict.get_or_insert(e);
+    });
+    let mut cdt =
+        cdt.map_err(|e| Error::Topology(format!("{}: the projected cycle cannot be triangulated ({e:?})", what())))?;
     if cdt.num_vertices() != n {
         return Err(Error::Topology(format!(
             "{}: two boundary vertices fall on the same point when projected on the patch's plane \
@@ -141,10 +128,7 @@ fn triangulate(
     for f in &result.excluded_faces {
         excluded[f.index()] = true;
     }
-    let positions: Vec<DVec2> = cdt
-        .vertices()
-        .map(|v| DVec2::new(v.position().x, v.position().y))
-        .collect();
+    let positions: Vec<DVec2> = cdt.vertices().map(|v| DVec2::new(v.position().x, v.position().y)).collect();
     let mut map = map;
     let mut tris = Vec::with_capacity(cdt.num_inner_faces());
     for f in cdt.inner_faces() {
@@ -155,17 +139,8 @@ fn triangulate(
         tris.push([v[0].fix().index(), v[1].fix().index(), v[2].fix().index()]);
     }
     // Refinement vertices are appended after the input ones.
-    let mut next_new = map
-        .iter()
-        .filter_map(|m| {
-            if let VRef::New(k) = m {
-                Some(*k + 1)
-            } else {
-                None
-            }
-        })
-        .max()
-        .unwrap_or(0);
+    let mut next_new =
+        map.iter().filter_map(|m| if let VRef::New(k) = m { Some(*k + 1) } else { None }).max().unwrap_or(0);
     let mut new_of: Vec<Option<VRef>> = vec![None; positions.len()];
     for t in &tris {
         for &i in t {
@@ -188,13 +163,7 @@ fn collect(
 ) -> Result<PatchMesh> {
     let num_new = map
         .iter()
-        .filter_map(|m| {
-            if let VRef::New(k) = m {
-                (*k != u32::MAX).then_some(*k as usize + 1)
-            } else {
-                None
-            }
-        })
+        .filter_map(|m| if let VRef::New(k) = m { (*k != u32::MAX).then_some(*k as usize + 1) } else { None })
         .max()
         .unwrap_or(0);
     let mut new_positions = vec![DVec3::ZERO; num_new];
@@ -220,20 +189,10 @@ fn collect(
         triangles.push(r);
         planar.push([pos2[t[0]], pos2[t[1]], pos2[t[2]]]);
     }
-    Ok(PatchMesh {
-        new_positions,
-        triangles,
-        planar,
-    })
+    Ok(PatchMesh { new_positions, triangles, planar })
 }
 
-fn tessellate_disk(
-    g: &Graph,
-    res: &Resampled,
-    hs: &[HalfEdge],
-    d: f64,
-    index: usize,
-) -> Result<PatchMesh> {
+fn tessellate_disk(g: &Graph, res: &Resampled, hs: &[HalfEdge], d: f64, index: usize) -> Result<PatchMesh> {
     let what = || format!("patch {index} (bounded by {})", describe_patch(g, hs));
     let ids = loop_vertices(res, hs);
     let p3: Vec<DVec3> = ids.iter().map(|&i| res.positions[i as usize]).collect();
@@ -243,34 +202,18 @@ fn tessellate_disk(
     // orientation, the plane of the cycle's vector area is used instead.
     let mean_n = ids.iter().map(|&i| res.normals[i as usize]).sum::<DVec3>() / ids.len() as f64;
     let area_n = polygon_vector_area(&p3).normalize_or_zero();
-    let n = if mean_n.length() > 0.1 && mean_n.dot(area_n) > 0.0 {
-        mean_n.normalize()
-    } else {
-        area_n
-    };
+    let n = if mean_n.length() > 0.1 && mean_n.dot(area_n) > 0.0 { mean_n.normalize() } else { area_n };
     if n == DVec3::ZERO {
-        return Err(Error::Topology(format!(
-            "{}: the cycle encloses no area",
-            what()
-        )));
+        return Err(Error::Topology(format!("{}: the cycle encloses no area", what())));
     }
     let (e1, e2) = plane_frame(n);
-    let pts: Vec<DVec2> = p3
-        .iter()
-        .map(|p| DVec2::new((*p - center).dot(e1), (*p - center).dot(e2)))
-        .collect();
+    let pts: Vec<DVec2> = p3.iter().map(|p| DVec2::new((*p - center).dot(e1), (*p - center).dot(e2))).collect();
     let map: Vec<VRef> = ids.iter().map(|&i| VRef::Curve(i)).collect();
     let (tris, pos2, map) = triangulate(pts, map, d, &what)?;
     collect(tris, &pos2, &map, |q| center + q.x * e1 + q.y * e2, &what)
 }
 
-fn tessellate_tube(
-    g: &Graph,
-    res: &Resampled,
-    loops: &[Vec<HalfEdge>; 2],
-    d: f64,
-    index: usize,
-) -> Result<PatchMesh> {
+fn tessellate_tube(g: &Graph, res: &Resampled, loops: &[Vec<HalfEdge>; 2], d: f64, index: usize) -> Result<PatchMesh> {
     let all: Vec<HalfEdge> = loops[0].iter().chain(&loops[1]).copied().collect();
     let what = || format!("tube patch {index} (between {})", describe_patch(g, &all));
     let a = loop_vertices(res, &loops[0]);
@@ -289,11 +232,7 @@ fn tessellate_tube(
     let h = ca.distance(cb);
     // Start B at the sample closest to A's first sample, so the seam runs straight across.
     let j0 = (0..b.len())
-        .min_by(|&x, &y| {
-            pos(b[x])
-                .distance(pos(a[0]))
-                .total_cmp(&pos(b[y]).distance(pos(a[0])))
-        })
+        .min_by(|&x, &y| pos(b[x]).distance(pos(a[0])).total_cmp(&pos(b[y]).distance(pos(a[0]))))
         .unwrap_or(0);
     let b: Vec<u32> = (0..b.len()).map(|k| b[(j0 + k) % b.len()]).collect();
     let (xa, xb) = (cum(&a), cum(&b));
@@ -382,9 +321,7 @@ pub fn tessellate(g: &Graph, res: &Resampled, patches: &[Patch], d: f64) -> Resu
     }
     mesh.on_boundary.resize(mesh.positions.len(), false);
     if mesh.positions.len() > u32::MAX as usize {
-        return Err(Error::Usage(
-            "the mesh would exceed 4 billion vertices; increase the spacing".into(),
-        ));
+        return Err(Error::Usage("the mesh would exceed 4 billion vertices; increase the spacing".into()));
     }
     // Every curve vertex must be used by some face (a vertex left out means a broken patch).
     let mut used = vec![false; mesh.positions.len()];

@@ -12,44 +12,24 @@ use std::f64::consts::TAU;
 fn topology(net: &Network) -> (usize, usize, Vec<Patch>) {
     let (net, _) = net.validated().unwrap();
     let (g, _) = find_nodes(&net, net.snap_tolerance()).unwrap();
-    let splines: Vec<CurveSpline> = g
-        .curves
-        .iter()
-        .map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed))
-        .collect();
+    let splines: Vec<CurveSpline> =
+        g.curves.iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
     let patches = find_patches(&g, &splines).unwrap();
     (g.nodes.len(), g.segments.len(), patches)
 }
 
 fn run(net: &Network, method: Method) -> curvenet::Surface {
-    surface(
-        net,
-        &Options {
-            method,
-            ..Default::default()
-        },
-    )
-    .unwrap()
+    surface(net, &Options { method, ..Default::default() }).unwrap()
 }
 
 fn error(name: &str, method: Method) -> DistanceStats {
     let s = run(&example(name).unwrap(), method);
-    distance_to_truth(
-        &s.mesh.positions,
-        s.mesh.num_curve,
-        &example_truth(name).unwrap(),
-    )
+    distance_to_truth(&s.mesh.positions, s.mesh.num_curve, &example_truth(name).unwrap())
 }
 
 /// Mean distance to the z axis of the vertices within ±0.05 of mid-height.
 fn mid_radius(s: &curvenet::Surface) -> f64 {
-    let r: Vec<f64> = s
-        .mesh
-        .positions
-        .iter()
-        .filter(|p| p.z.abs() < 0.05)
-        .map(|p| p.truncate().length())
-        .collect();
+    let r: Vec<f64> = s.mesh.positions.iter().filter(|p| p.z.abs() < 0.05).map(|p| p.truncate().length()).collect();
     assert!(r.len() > 50);
     r.iter().sum::<f64>() / r.len() as f64
 }
@@ -89,10 +69,7 @@ fn sphere_accuracy_and_method_ordering() {
 fn torus_accuracy() {
     let nc = error("torus", Method::NormalControl);
     let bi = error("torus", Method::Biharmonic);
-    eprintln!(
-        "torus mean distance: normal-control {:.4}, biharmonic {:.4}",
-        nc.mean, bi.mean
-    );
+    eprintln!("torus mean distance: normal-control {:.4}, biharmonic {:.4}", nc.mean, bi.mean);
     // The inner equator has H = 0 and the inside negative curvature: the signed guide must
     // keep the surface on the right side; the planar metric of these deep patches is the
     // paper's known weakness ([CG] §5), so the bound is loose.
@@ -105,9 +82,7 @@ fn normal_control_shapes_tubes() {
     let barrel = mid_radius(&run(&example("barrel").unwrap(), Method::NormalControl));
     let bottleneck = mid_radius(&run(&example("bottleneck").unwrap(), Method::NormalControl));
     let cylinder = mid_radius(&run(&example("cylinder").unwrap(), Method::NormalControl));
-    eprintln!(
-        "mid-height radius: barrel {barrel:.4}, cylinder {cylinder:.4}, bottleneck {bottleneck:.4}"
-    );
+    eprintln!("mid-height radius: barrel {barrel:.4}, cylinder {cylinder:.4}, bottleneck {bottleneck:.4}");
     assert!(barrel >= 1.10, "{barrel}");
     assert!(bottleneck <= 0.90, "{bottleneck}");
     assert!((cylinder - 1.0).abs() < 0.02, "{cylinder}");
@@ -123,16 +98,8 @@ fn hard_constraints_interpolate_the_input_samples() {
         let net = example(name).unwrap();
         let s = run(&net, Method::NormalControl);
         let md = MeshDistance::new(&s.mesh.positions, &s.mesh.faces);
-        let worst = net
-            .curves
-            .iter()
-            .flat_map(|c| c.points.iter())
-            .map(|p| md.closest(*p).0)
-            .fold(0.0, f64::max);
-        eprintln!(
-            "{name}: farthest input sample {worst:.2e} from the mesh (spacing {:.2e})",
-            s.stats.spacing
-        );
+        let worst = net.curves.iter().flat_map(|c| c.points.iter()).map(|p| md.closest(*p).0).fold(0.0, f64::max);
+        eprintln!("{name}: farthest input sample {worst:.2e} from the mesh (spacing {:.2e})", s.stats.spacing);
         assert!(worst <= 0.01 * s.stats.spacing, "{name}: {worst}");
     }
 }
@@ -148,18 +115,13 @@ fn sampling_direction_does_not_matter() {
     let a = run(&net, Method::NormalControl);
     let b = run(&rev, Method::NormalControl);
     assert_eq!(a.stats.cycles, b.stats.cycles);
-    let truth = Truth::Sphere {
-        center: DVec3::ZERO,
-        radius: 1.0,
-    };
+    let truth = Truth::Sphere { center: DVec3::ZERO, radius: 1.0 };
     let (ea, eb) = (
         distance_to_truth(&a.mesh.positions, a.mesh.num_curve, &truth),
         distance_to_truth(&b.mesh.positions, b.mesh.num_curve, &truth),
     );
     assert!((ea.mean - eb.mean).abs() < 0.05 * ea.mean, "{ea:?} {eb:?}");
-    assert!(
-        (a.stats.vertices as f64 - b.stats.vertices as f64).abs() < 0.01 * a.stats.vertices as f64
-    );
+    assert!((a.stats.vertices as f64 - b.stats.vertices as f64).abs() < 0.01 * a.stats.vertices as f64);
 }
 
 #[test]
@@ -168,56 +130,28 @@ fn faces_agree_with_the_normals() {
         let net = example(name).unwrap();
         let s = run(&net, Method::NormalControl);
         // Mesh normals at curve vertices point the same way as the input normals.
-        let agree = (0..s.mesh.num_curve)
-            .filter(|&i| s.normals[i].dot(s.mesh.curve_normals[i]) > 0.5)
-            .count();
-        assert!(
-            agree as f64 > 0.99 * s.mesh.num_curve as f64,
-            "{name}: {agree}/{}",
-            s.mesh.num_curve
-        );
+        let agree = (0..s.mesh.num_curve).filter(|&i| s.normals[i].dot(s.mesh.curve_normals[i]) > 0.5).count();
+        assert!(agree as f64 > 0.99 * s.mesh.num_curve as f64, "{name}: {agree}/{}", s.mesh.num_curve);
     }
 }
 
 #[test]
 fn a_lone_boundary_loop_bounds_a_flat_disk() {
     let n = 64;
-    let points: Vec<DVec3> = (0..n)
-        .map(|k| {
-            DVec3::new(
-                (TAU * k as f64 / n as f64).cos(),
-                (TAU * k as f64 / n as f64).sin(),
-                0.5,
-            )
-        })
-        .collect();
+    let points: Vec<DVec3> =
+        (0..n).map(|k| DVec3::new((TAU * k as f64 / n as f64).cos(), (TAU * k as f64 / n as f64).sin(), 0.5)).collect();
     let net = Network {
-        curves: vec![Curve {
-            name: None,
-            normals: vec![DVec3::Z; n],
-            points,
-            closed: true,
-            boundary: true,
-        }],
+        curves: vec![Curve { name: None, normals: vec![DVec3::Z; n], points, closed: true, boundary: true }],
         snap: None,
     };
     let (_, _, p) = topology(&net);
     assert!(matches!(p.as_slice(), [Patch::Disk(_)]));
     for method in Method::ALL {
         let s = run(&net, method);
-        let worst = s
-            .mesh
-            .positions
-            .iter()
-            .map(|p| (p.z - 0.5).abs())
-            .fold(0.0, f64::max);
+        let worst = s.mesh.positions.iter().map(|p| (p.z - 0.5).abs()).fold(0.0, f64::max);
         // The triharmonic matrix has condition number ~ h⁻⁶ (≈ 1e10 here): its round-off
         // error is larger than the others'.
-        let tol = if method == Method::Triharmonic {
-            1e-6
-        } else {
-            1e-9
-        };
+        let tol = if method == Method::Triharmonic { 1e-6 } else { 1e-9 };
         assert!(worst < tol, "{method:?}: {worst}");
         assert!(s.normals.iter().all(|n| n.z > 0.999));
     }
@@ -227,29 +161,13 @@ fn a_lone_boundary_loop_bounds_a_flat_disk() {
 fn soft_constraints_stay_close_to_the_curves() {
     let net = example("sphere").unwrap();
     let hard = run(&net, Method::NormalControl);
-    let soft = surface(
-        &net,
-        &Options {
-            soft: Some(1e6),
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    let moved = (0..hard.mesh.num_curve)
-        .map(|i| hard.mesh.positions[i].distance(soft.mesh.positions[i]))
-        .fold(0.0, f64::max);
+    let soft = surface(&net, &Options { soft: Some(1e6), ..Default::default() }).unwrap();
+    let moved =
+        (0..hard.mesh.num_curve).map(|i| hard.mesh.positions[i].distance(soft.mesh.positions[i])).fold(0.0, f64::max);
     assert!(moved > 0.0 && moved < 0.01, "{moved}");
-    let weak = surface(
-        &net,
-        &Options {
-            soft: Some(1e-3),
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    let moved_weak = (0..hard.mesh.num_curve)
-        .map(|i| hard.mesh.positions[i].distance(weak.mesh.positions[i]))
-        .fold(0.0, f64::max);
+    let weak = surface(&net, &Options { soft: Some(1e-3), ..Default::default() }).unwrap();
+    let moved_weak =
+        (0..hard.mesh.num_curve).map(|i| hard.mesh.positions[i].distance(weak.mesh.positions[i])).fold(0.0, f64::max);
     assert!(moved_weak > moved, "{moved_weak} {moved}");
 }
 
@@ -257,31 +175,16 @@ fn soft_constraints_stay_close_to_the_curves() {
 fn vertex_count_and_spacing_options() {
     let net = example("sphere").unwrap();
     for target in [5_000, 40_000] {
-        let s = surface(
-            &net,
-            &Options {
-                vertices: Some(target),
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let s = surface(&net, &Options { vertices: Some(target), ..Default::default() }).unwrap();
         let r = s.stats.vertices as f64 / target as f64;
         assert!((0.85..1.15).contains(&r), "{target}: {}", s.stats.vertices);
     }
-    let s = surface(
-        &net,
-        &Options {
-            spacing: Some(0.05),
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let s = surface(&net, &Options { spacing: Some(0.05), ..Default::default() }).unwrap();
     // Mean edge length close to the spacing.
     let mut total = 0.0;
     for f in &s.mesh.faces {
         for k in 0..3 {
-            total +=
-                s.mesh.positions[f[k] as usize].distance(s.mesh.positions[f[(k + 1) % 3] as usize]);
+            total += s.mesh.positions[f[k] as usize].distance(s.mesh.positions[f[(k + 1) % 3] as usize]);
         }
     }
     let mean = total / (3 * s.mesh.faces.len()) as f64;

@@ -71,11 +71,7 @@ pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
     for (ci, c) in net.curves.iter().enumerate() {
         writeln!(w, "    {{")?;
         if let Some(name) = &c.name {
-            writeln!(
-                w,
-                "      \"name\": {},",
-                serde_json::to_string(name).unwrap_or_default()
-            )?;
+            writeln!(w, "      \"name\": {},", serde_json::to_string(name).unwrap_or_default())?;
         }
         writeln!(w, "      \"closed\": {},", c.closed)?;
         writeln!(w, "      \"boundary\": {},", c.boundary)?;
@@ -85,11 +81,7 @@ pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
         writeln!(w, "      \"normals\": [")?;
         write_points(w, &c.normals)?;
         writeln!(w, "      ]")?;
-        writeln!(
-            w,
-            "    }}{}",
-            if ci + 1 < net.curves.len() { "," } else { "" }
-        )?;
+        writeln!(w, "    }}{}", if ci + 1 < net.curves.len() { "," } else { "" })?;
     }
     writeln!(w, "  ]")?;
     writeln!(w, "}}")

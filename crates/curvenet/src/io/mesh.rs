@@ -58,10 +58,7 @@ fn mesh_format(path: &Path) -> Result<MeshFormat> {
         "obj" => Ok(MeshFormat::Obj),
         "ply" => Ok(MeshFormat::Ply),
         "off" => Ok(MeshFormat::Off),
-        ext => Err(Error::Usage(format!(
-            "{}: unknown mesh format \".{ext}\"; use .obj, .ply or .off",
-            path.display()
-        ))),
+        ext => Err(Error::Usage(format!("{}: unknown mesh format \".{ext}\"; use .obj, .ply or .off", path.display()))),
     }
 }
 
@@ -87,16 +84,12 @@ pub fn stage_mesh(path: &Path, mesh: MeshData<'_>) -> Result<Staged> {
     ] {
         if let Some(len) = len {
             if len != n {
-                return Err(Error::Usage(format!(
-                    "mesh attribute {name} has {len} entries for {n} vertices"
-                )));
+                return Err(Error::Usage(format!("mesh attribute {name} has {len} entries for {n} vertices")));
             }
         }
     }
     if let Some(bad) = mesh.faces.iter().flatten().find(|&&i| i as usize >= n) {
-        return Err(Error::Usage(format!(
-            "mesh face refers to vertex {bad} but there are {n} vertices"
-        )));
+        return Err(Error::Usage(format!("mesh face refers to vertex {bad} but there are {n} vertices")));
     }
     Staged::write(path, |w| match format {
         MeshFormat::Obj => write_obj(w, mesh),
@@ -106,12 +99,7 @@ pub fn stage_mesh(path: &Path, mesh: MeshData<'_>) -> Result<Staged> {
 }
 
 fn write_obj(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
-    writeln!(
-        w,
-        "# written by curvenet: {} vertices, {} faces",
-        m.positions.len(),
-        m.faces.len()
-    )?;
+    writeln!(w, "# written by curvenet: {} vertices, {} faces", m.positions.len(), m.faces.len())?;
     for p in m.positions {
         writeln!(w, "v {:?} {:?} {:?}", p.x, p.y, p.z)?;
     }
@@ -144,10 +132,7 @@ fn write_off(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
 }
 
 fn write_ply(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
-    writeln!(
-        w,
-        "ply\nformat binary_little_endian 1.0\ncomment written by curvenet"
-    )?;
+    writeln!(w, "ply\nformat binary_little_endian 1.0\ncomment written by curvenet")?;
     writeln!(w, "element vertex {}", m.positions.len())?;
     writeln!(w, "property double x\nproperty double y\nproperty double z")?;
     if m.normals.is_some() {
@@ -200,8 +185,8 @@ pub fn read_mesh(path: &Path) -> Result<MeshFile> {
     let mesh = match format {
         MeshFormat::Ply => read_ply(&bytes, &source)?,
         _ => {
-            let text = std::str::from_utf8(&bytes)
-                .map_err(|_| parse_error(&source, 1, 1, "file is not valid UTF-8 text"))?;
+            let text =
+                std::str::from_utf8(&bytes).map_err(|_| parse_error(&source, 1, 1, "file is not valid UTF-8 text"))?;
             if format == MeshFormat::Obj {
                 read_obj(text, &source)?
             } else {
@@ -245,12 +230,7 @@ fn read_obj(text: &str, source: &str) -> Result<MeshFile> {
                 let mut c = [0.0; 3];
                 for (k, ck) in c.iter_mut().enumerate() {
                     let (col, tok) = t.next().ok_or_else(|| {
-                        parse_error(
-                            source,
-                            li + 1,
-                            line.len() + 1,
-                            format!("\"{kw}\" needs 3 numbers, found {k}"),
-                        )
+                        parse_error(source, li + 1, line.len() + 1, format!("\"{kw}\" needs 3 numbers, found {k}"))
                     })?;
                     *ck = parse_f64(source, li + 1, col, tok, "a coordinate")?;
                 }
@@ -265,35 +245,16 @@ fn read_obj(text: &str, source: &str) -> Result<MeshFile> {
                 while let Some((col, tok)) = t.next() {
                     let head = tok.split('/').next().unwrap_or(tok);
                     let i: i64 = head.parse().map_err(|_| {
-                        parse_error(
-                            source,
-                            li + 1,
-                            col,
-                            format!("expected a vertex index, found \"{tok}\""),
-                        )
+                        parse_error(source, li + 1, col, format!("expected a vertex index, found \"{tok}\""))
                     })?;
-                    let i = if i < 0 {
-                        m.positions.len() as i64 + i
-                    } else {
-                        i - 1
-                    };
+                    let i = if i < 0 { m.positions.len() as i64 + i } else { i - 1 };
                     if i < 0 || i >= m.positions.len() as i64 {
-                        return Err(parse_error(
-                            source,
-                            li + 1,
-                            col,
-                            format!("vertex index {head} is out of range"),
-                        ));
+                        return Err(parse_error(source, li + 1, col, format!("vertex index {head} is out of range")));
                     }
                     poly.push(i as u32);
                 }
                 if poly.len() < 3 {
-                    return Err(parse_error(
-                        source,
-                        li + 1,
-                        1,
-                        "a face needs at least 3 vertices",
-                    ));
+                    return Err(parse_error(source, li + 1, 1, "a face needs at least 3 vertices"));
                 }
                 fan(&poly, &mut m.faces);
             }
@@ -307,122 +268,59 @@ fn read_obj(text: &str, source: &str) -> Result<MeshFile> {
 }
 
 fn read_off(text: &str, source: &str) -> Result<MeshFile> {
-    let mut toks = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| Tokens::of_line(i + 1, l))
-        .filter(|t| !t.is_empty());
-    let mut t = toks
-        .next()
-        .ok_or_else(|| parse_error(source, 1, 1, "empty file"))?;
+    let mut toks = text.lines().enumerate().map(|(i, l)| Tokens::of_line(i + 1, l)).filter(|t| !t.is_empty());
+    let mut t = toks.next().ok_or_else(|| parse_error(source, 1, 1, "empty file"))?;
     let (col, head) = t.next().unwrap_or((1, ""));
     if !head.ends_with("OFF") {
-        return Err(parse_error(
-            source,
-            t.line,
-            col,
-            format!("expected \"OFF\", found \"{head}\""),
-        ));
+        return Err(parse_error(source, t.line, col, format!("expected \"OFF\", found \"{head}\"")));
     }
     if t.is_empty() {
-        t = toks
-            .next()
-            .ok_or_else(|| parse_error(source, 1, 1, "missing vertex and face counts"))?;
+        t = toks.next().ok_or_else(|| parse_error(source, 1, 1, "missing vertex and face counts"))?;
     }
     let line = t.line;
     let mut counts = [0usize; 2];
     for c in counts.iter_mut() {
-        let (col, tok) = t
-            .next()
-            .ok_or_else(|| parse_error(source, line, 1, "expected vertex and face counts"))?;
-        *c = tok.parse().map_err(|_| {
-            parse_error(
-                source,
-                line,
-                col,
-                format!("expected a count, found \"{tok}\""),
-            )
-        })?;
+        let (col, tok) = t.next().ok_or_else(|| parse_error(source, line, 1, "expected vertex and face counts"))?;
+        *c = tok.parse().map_err(|_| parse_error(source, line, col, format!("expected a count, found \"{tok}\"")))?;
     }
     let [nv, nf] = counts;
     let mut m = MeshFile::default();
     m.positions.reserve(nv.min(1 << 26));
     for k in 0..nv {
-        let mut t = toks.next().ok_or_else(|| {
-            parse_error(
-                source,
-                line,
-                1,
-                format!("file ends before vertex {k} of {nv}"),
-            )
-        })?;
+        let mut t =
+            toks.next().ok_or_else(|| parse_error(source, line, 1, format!("file ends before vertex {k} of {nv}")))?;
         let mut c = [0.0; 3];
         for ck in c.iter_mut() {
             let l = t.line;
-            let (col, tok) = t
-                .next()
-                .ok_or_else(|| parse_error(source, l, 1, "a vertex needs 3 coordinates"))?;
+            let (col, tok) = t.next().ok_or_else(|| parse_error(source, l, 1, "a vertex needs 3 coordinates"))?;
             *ck = parse_f64(source, l, col, tok, "a coordinate")?;
         }
         m.positions.push(DVec3::from_array(c));
     }
     let mut poly = Vec::new();
     for k in 0..nf {
-        let mut t = toks.next().ok_or_else(|| {
-            parse_error(
-                source,
-                line,
-                1,
-                format!("file ends before face {k} of {nf}"),
-            )
-        })?;
+        let mut t =
+            toks.next().ok_or_else(|| parse_error(source, line, 1, format!("file ends before face {k} of {nf}")))?;
         let l = t.line;
-        let (col, tok) = t
-            .next()
-            .ok_or_else(|| parse_error(source, l, 1, "empty face"))?;
-        let deg: usize = tok.parse().map_err(|_| {
-            parse_error(
-                source,
-                l,
-                col,
-                format!("expected a vertex count, found \"{tok}\""),
-            )
-        })?;
+        let (col, tok) = t.next().ok_or_else(|| parse_error(source, l, 1, "empty face"))?;
+        let deg: usize = tok
+            .parse()
+            .map_err(|_| parse_error(source, l, col, format!("expected a vertex count, found \"{tok}\"")))?;
         poly.clear();
         for _ in 0..deg {
-            let (col, tok) = t.next().ok_or_else(|| {
-                parse_error(
-                    source,
-                    l,
-                    1,
-                    format!("face {k} lists fewer than {deg} vertices"),
-                )
-            })?;
-            let i: usize = tok.parse().map_err(|_| {
-                parse_error(
-                    source,
-                    l,
-                    col,
-                    format!("expected a vertex index, found \"{tok}\""),
-                )
-            })?;
+            let (col, tok) = t
+                .next()
+                .ok_or_else(|| parse_error(source, l, 1, format!("face {k} lists fewer than {deg} vertices")))?;
+            let i: usize = tok
+                .parse()
+                .map_err(|_| parse_error(source, l, col, format!("expected a vertex index, found \"{tok}\"")))?;
             if i >= nv {
-                return Err(parse_error(
-                    source,
-                    l,
-                    col,
-                    format!("vertex index {i} is out of range ({nv} vertices)"),
-                ));
+                return Err(parse_error(source, l, col, format!("vertex index {i} is out of range ({nv} vertices)")));
             }
             poly.push(i as u32);
         }
         if deg < 3 {
-            return Err(parse_error(
-                source,
-                l,
-                col,
-                "a face needs at least 3 vertices",
-            ));
+            return Err(parse_error(source, l, col, "a face needs at least 3 vertices"));
         }
         fan(&poly, &mut m.faces);
     }
@@ -489,12 +387,7 @@ struct PlyReader<'a> {
 
 impl PlyReader<'_> {
     fn err(&self, msg: impl Into<String>) -> Error {
-        Error::Input(format!(
-            "{}: byte {}: {}",
-            self.source,
-            self.pos,
-            msg.into()
-        ))
+        Error::Input(format!("{}: byte {}: {}", self.source, self.pos, msg.into()))
     }
 
     fn read(&mut self, ty: Scalar) -> Result<f64> {
@@ -510,9 +403,7 @@ impl PlyReader<'_> {
                 return Err(self.err("file ends early"));
             }
             let tok = std::str::from_utf8(&self.bytes[start..self.pos]).unwrap_or("?");
-            return tok
-                .parse::<f64>()
-                .map_err(|_| self.err(format!("expected a number, found \"{tok}\"")));
+            return tok.parse::<f64>().map_err(|_| self.err(format!("expected a number, found \"{tok}\"")));
         }
         let n = ty.size();
         if self.pos + n > self.bytes.len() {
@@ -542,8 +433,8 @@ fn read_ply(bytes: &[u8], source: &str) -> Result<MeshFile> {
         .windows(10)
         .position(|w| w == b"end_header")
         .ok_or_else(|| parse_error(source, 1, 1, "not a PLY file: no \"end_header\""))?;
-    let header = std::str::from_utf8(&bytes[..header_end])
-        .map_err(|_| parse_error(source, 1, 1, "PLY header is not text"))?;
+    let header =
+        std::str::from_utf8(&bytes[..header_end]).map_err(|_| parse_error(source, 1, 1, "PLY header is not text"))?;
     let mut body = header_end + 10;
     while body < bytes.len() && bytes[body] != b'\n' {
         body += 1;
@@ -566,19 +457,11 @@ fn read_ply(bytes: &[u8], source: &str) -> Result<MeshFile> {
             Some((_, "element")) => {
                 let name = t.next().map(|x| x.1.to_string()).unwrap_or_default();
                 let (col, tok) = t.next().ok_or_else(|| bad(1, "element needs a count"))?;
-                let count = tok
-                    .parse()
-                    .map_err(|_| bad(col, "element count is not a number"))?;
-                elements.push(Element {
-                    name,
-                    count,
-                    props: Vec::new(),
-                });
+                let count = tok.parse().map_err(|_| bad(col, "element count is not a number"))?;
+                elements.push(Element { name, count, props: Vec::new() });
             }
             Some((col, "property")) => {
-                let el = elements
-                    .last_mut()
-                    .ok_or_else(|| bad(col, "property before any element"))?;
+                let el = elements.last_mut().ok_or_else(|| bad(col, "property before any element"))?;
                 let (c1, t1) = t.next().ok_or_else(|| bad(col, "property needs a type"))?;
                 let prop = if t1 == "list" {
                     let (c2, t2) = t.next().ok_or_else(|| bad(c1, "list needs a count type"))?;
@@ -591,26 +474,14 @@ fn read_ply(bytes: &[u8], source: &str) -> Result<MeshFile> {
                     }
                 } else {
                     let name = t.next().map(|x| x.1.to_string()).unwrap_or_default();
-                    Prop {
-                        name,
-                        list: None,
-                        ty: Scalar::parse(t1).ok_or_else(|| bad(c1, "unknown PLY type"))?,
-                    }
+                    Prop { name, list: None, ty: Scalar::parse(t1).ok_or_else(|| bad(c1, "unknown PLY type"))? }
                 };
                 el.props.push(prop);
             }
-            Some((col, other)) => {
-                return Err(bad(col, &format!("unknown PLY header keyword \"{other}\"")))
-            }
+            Some((col, other)) => return Err(bad(col, &format!("unknown PLY header keyword \"{other}\""))),
         }
     }
-    let mut r = PlyReader {
-        bytes,
-        pos: body,
-        ascii,
-        big_endian,
-        source,
-    };
+    let mut r = PlyReader { bytes, pos: body, ascii, big_endian, source };
     let mut m = MeshFile::default();
     let mut poly = Vec::new();
     for el in &elements {
@@ -622,12 +493,7 @@ fn read_ply(bytes: &[u8], source: &str) -> Result<MeshFile> {
         let ih = find("mean_curvature");
         let ic = find("curve");
         if is_vertex && (ix.is_none() || iy.is_none() || iz.is_none()) {
-            return Err(parse_error(
-                source,
-                1,
-                1,
-                "PLY vertex element lacks x, y or z",
-            ));
+            return Err(parse_error(source, 1, 1, "PLY vertex element lacks x, y or z"));
         }
         let has_n = is_vertex && inx.is_some() && iny.is_some() && inz.is_some();
         let mut normals = Vec::new();
@@ -646,9 +512,7 @@ fn read_ply(bytes: &[u8], source: &str) -> Result<MeshFile> {
                         let v = r.read(p.ty)?;
                         if is_face && (p.name == "vertex_indices" || p.name == "vertex_index") {
                             if v < 0.0 || v >= m.positions.len() as f64 {
-                                return Err(
-                                    r.err(format!("face refers to vertex {v}, out of range"))
-                                );
+                                return Err(r.err(format!("face refers to vertex {v}, out of range")));
                             }
                             poly.push(v as u32);
                         }

@@ -45,10 +45,7 @@ impl NetworkFormat {
 }
 
 pub(crate) fn extension(path: &Path) -> String {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase()
+    path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase()
 }
 
 /// Reads a curve network; the format comes from the extension. The network is returned as
@@ -58,12 +55,7 @@ pub fn read_network(path: &Path) -> Result<Network> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let text = String::from_utf8(bytes).map_err(|e| {
         let (line, column) = line_col(&e.as_bytes()[..e.utf8_error().valid_up_to()]);
-        Error::Parse {
-            path: path.display().to_string(),
-            line,
-            column,
-            message: "file is not valid UTF-8 text".into(),
-        }
+        Error::Parse { path: path.display().to_string(), line, column, message: "file is not valid UTF-8 text".into() }
     })?;
     parse_network(&text, format, &path.display().to_string())
 }
@@ -107,21 +99,14 @@ pub struct Staged {
 
 impl Staged {
     /// Writes through `body` into a temporary file beside `path`.
-    pub fn write(
-        path: &Path,
-        body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
-    ) -> Result<Staged> {
+    pub fn write(path: &Path, body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<Staged> {
         let dir = match path.parent() {
             Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
             _ => std::path::PathBuf::from("."),
         };
         let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
         let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-        let staged = Staged {
-            tmp,
-            path: path.to_path_buf(),
-            done: false,
-        };
+        let staged = Staged { tmp, path: path.to_path_buf(), done: false };
         let result = (|| -> std::io::Result<()> {
             let file = std::fs::File::create(&staged.tmp)?;
             let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
@@ -152,10 +137,7 @@ impl Drop for Staged {
 
 /// Writes through `body` into a temporary file beside `path`, then renames it onto `path`.
 /// On any error the temporary file is removed and `path` is left as it was.
-pub(crate) fn write_atomic(
-    path: &Path,
-    body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
-) -> Result<()> {
+pub(crate) fn write_atomic(path: &Path, body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<()> {
     Staged::write(path, body)?.commit()
 }
 
@@ -193,10 +175,7 @@ impl<'a> Tokens<'a> {
             rest.push((line[..start].chars().count() + 1, &line[start..i]));
         }
         rest.reverse();
-        Tokens {
-            line: line_no,
-            rest,
-        }
+        Tokens { line: line_no, rest }
     }
 
     pub fn is_empty(&self) -> bool {
@@ -212,42 +191,16 @@ impl<'a> Tokens<'a> {
     }
 }
 
-pub(crate) fn parse_error(
-    source: &str,
-    line: usize,
-    column: usize,
-    message: impl Into<String>,
-) -> Error {
-    Error::Parse {
-        path: source.to_string(),
-        line,
-        column,
-        message: message.into(),
-    }
+pub(crate) fn parse_error(source: &str, line: usize, column: usize, message: impl Into<String>) -> Error {
+    Error::Parse { path: source.to_string(), line, column, message: message.into() }
 }
 
 /// Parses a finite `f64` token; `what` names the value in the message.
-pub(crate) fn parse_f64(
-    source: &str,
-    line: usize,
-    col: usize,
-    tok: &str,
-    what: &str,
-) -> Result<f64> {
+pub(crate) fn parse_f64(source: &str, line: usize, col: usize, tok: &str, what: &str) -> Result<f64> {
     match tok.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
-        Ok(_) => Err(parse_error(
-            source,
-            line,
-            col,
-            format!("{what} \"{tok}\" is not a finite number"),
-        )),
-        Err(_) => Err(parse_error(
-            source,
-            line,
-            col,
-            format!("expected a number for {what}, found \"{tok}\""),
-        )),
+        Ok(_) => Err(parse_error(source, line, col, format!("{what} \"{tok}\" is not a finite number"))),
+        Err(_) => Err(parse_error(source, line, col, format!("expected a number for {what}, found \"{tok}\""))),
     }
 }
 

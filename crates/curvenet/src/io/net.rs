@@ -18,41 +18,18 @@ use std::collections::HashMap;
 use std::io::Write;
 
 pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| Tokens::of_line(i + 1, l))
-        .filter(|t| !t.is_empty());
+    let mut lines = text.lines().enumerate().map(|(i, l)| Tokens::of_line(i + 1, l)).filter(|t| !t.is_empty());
     let last_line = text.lines().count().max(1);
-    let eof = |what: &str| {
-        parse_error(
-            source,
-            last_line,
-            1,
-            format!("file ends early: expected {what}"),
-        )
-    };
+    let eof = |what: &str| parse_error(source, last_line, 1, format!("file ends early: expected {what}"));
 
     let count = |t: &mut Tokens, what: &str| -> Result<usize> {
         let line = t.line;
-        let (col, tok) = t
-            .next()
-            .ok_or_else(|| parse_error(source, line, 1, format!("expected {what}")))?;
+        let (col, tok) = t.next().ok_or_else(|| parse_error(source, line, 1, format!("expected {what}")))?;
         let n = tok.parse::<usize>().map_err(|_| {
-            parse_error(
-                source,
-                line,
-                col,
-                format!("expected {what} (a non-negative integer), found \"{tok}\""),
-            )
+            parse_error(source, line, col, format!("expected {what} (a non-negative integer), found \"{tok}\""))
         })?;
         if let Some((col, tok)) = t.next() {
-            return Err(parse_error(
-                source,
-                line,
-                col,
-                format!("unexpected \"{tok}\" after {what}"),
-            ));
+            return Err(parse_error(source, line, col, format!("unexpected \"{tok}\" after {what}")));
         }
         Ok(n)
     };
@@ -62,29 +39,17 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
     let mut points = Vec::with_capacity(n.min(1 << 24));
     let mut normals = Vec::with_capacity(n.min(1 << 24));
     for k in 0..n {
-        let mut t = lines
-            .next()
-            .ok_or_else(|| eof(&format!("sample {k} of {n} (x y z nx ny nz)")))?;
+        let mut t = lines.next().ok_or_else(|| eof(&format!("sample {k} of {n} (x y z nx ny nz)")))?;
         let mut c = [0.0; 6];
         for (j, cj) in c.iter_mut().enumerate() {
             let line = t.line;
             let (col, tok) = t.next().ok_or_else(|| {
-                parse_error(
-                    source,
-                    line,
-                    1,
-                    format!("sample {k}: expected 6 numbers (x y z nx ny nz), found {j}"),
-                )
+                parse_error(source, line, 1, format!("sample {k}: expected 6 numbers (x y z nx ny nz), found {j}"))
             })?;
             *cj = parse_f64(source, line, col, tok, &format!("sample {k}"))?;
         }
         if let Some((col, tok)) = t.next() {
-            return Err(parse_error(
-                source,
-                t.line,
-                col,
-                format!("sample {k}: unexpected 7th value \"{tok}\""),
-            ));
+            return Err(parse_error(source, t.line, col, format!("sample {k}: unexpected 7th value \"{tok}\"")));
         }
         points.push(DVec3::new(c[0], c[1], c[2]));
         normals.push(DVec3::new(c[3], c[4], c[5]));
@@ -93,9 +58,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
     let k = count(&mut t, "the number of curves")?;
     let mut curves = Vec::with_capacity(k.min(1 << 20));
     for ci in 0..k {
-        let mut t = lines
-            .next()
-            .ok_or_else(|| eof(&format!("the boundary flag of curve {ci}")))?;
+        let mut t = lines.next().ok_or_else(|| eof(&format!("the boundary flag of curve {ci}")))?;
         let line = t.line;
         let (col, tok) = t.next().ok_or_else(|| eof("a boundary flag"))?;
         let boundary = match tok {
@@ -118,26 +81,22 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
                 format!("curve {ci}: unexpected \"{tok}\" after the boundary flag"),
             ));
         }
-        let mut t = lines
-            .next()
-            .ok_or_else(|| eof(&format!("the sample indices of curve {ci}")))?;
+        let mut t = lines.next().ok_or_else(|| eof(&format!("the sample indices of curve {ci}")))?;
         let line = t.line;
         let mut ids = Vec::with_capacity(t.remaining());
         while let Some((col, tok)) = t.next() {
             let i: usize = tok.parse().map_err(|_| {
-                parse_error(
-                    source,
-                    line,
-                    col,
-                    format!("curve {ci}: expected a sample index, found \"{tok}\""),
-                )
+                parse_error(source, line, col, format!("curve {ci}: expected a sample index, found \"{tok}\""))
             })?;
             if i >= n {
                 return Err(parse_error(
                     source,
                     line,
                     col,
-                    format!("curve {ci}: sample index {i} is out of range (the file has {n} samples, indices 0..{})", n.saturating_sub(1)),
+                    format!(
+                        "curve {ci}: sample index {i} is out of range (the file has {n} samples, indices 0..{})",
+                        n.saturating_sub(1)
+                    ),
                 ));
             }
             ids.push(i);
@@ -155,12 +114,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
         });
     }
     if let Some(t) = lines.next() {
-        return Err(parse_error(
-            source,
-            t.line,
-            1,
-            format!("unexpected content after the {k} curves"),
-        ));
+        return Err(parse_error(source, t.line, 1, format!("unexpected content after the {k} curves")));
     }
     Ok(Network { curves, snap: None })
 }
@@ -187,11 +141,7 @@ pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
     }
     writeln!(w, "{}", samples.len())?;
     for (p, n) in &samples {
-        writeln!(
-            w,
-            "{:?} {:?} {:?} {:?} {:?} {:?}",
-            p.x, p.y, p.z, n.x, n.y, n.z
-        )?;
+        writeln!(w, "{:?} {:?} {:?} {:?} {:?} {:?}", p.x, p.y, p.z, n.x, n.y, n.z)?;
     }
     writeln!(w, "{}", net.curves.len())?;
     for (c, ids) in net.curves.iter().zip(&curves_ids) {

@@ -28,11 +28,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
         let Some((_, kw)) = t.next() else { continue };
         match kw {
             "v" | "vn" => {
-                let what = if kw == "v" {
-                    "a vertex coordinate"
-                } else {
-                    "a normal coordinate"
-                };
+                let what = if kw == "v" { "a vertex coordinate" } else { "a normal coordinate" };
                 let mut c = [0.0; 3];
                 for (k, ck) in c.iter_mut().enumerate() {
                     let Some((col, tok)) = t.next() else {
@@ -56,30 +52,16 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
                 while let Some((col, tok)) = t.next() {
                     let head = tok.split('/').next().unwrap_or(tok);
                     let i: i64 = head.parse().map_err(|_| {
-                        parse_error(
-                            source,
-                            li + 1,
-                            col,
-                            format!("expected a vertex index, found \"{tok}\""),
-                        )
+                        parse_error(source, li + 1, col, format!("expected a vertex index, found \"{tok}\""))
                     })?;
                     // Negative indices are relative to the vertices read so far.
                     let i = if i < 0 { v.len() as i64 + i + 1 } else { i };
                     idx.push((li + 1, col, i));
                 }
                 if idx.len() < 2 {
-                    return Err(parse_error(
-                        source,
-                        li + 1,
-                        1,
-                        "a polyline (\"l\") needs at least 2 indices",
-                    ));
+                    return Err(parse_error(source, li + 1, 1, "a polyline (\"l\") needs at least 2 indices"));
                 }
-                polys.push(Poly {
-                    name: group.clone(),
-                    boundary,
-                    idx,
-                });
+                polys.push(Poly { name: group.clone(), boundary, idx });
             }
             "g" | "o" => {
                 let mut names = Vec::new();
@@ -89,28 +71,15 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
                 if kw == "g" {
                     boundary = names.iter().any(|n| n.eq_ignore_ascii_case("boundary"));
                 }
-                group = if names.is_empty() {
-                    None
-                } else {
-                    Some(names.join(" "))
-                };
+                group = if names.is_empty() { None } else { Some(names.join(" ")) };
             }
             "f" => faces += 1,
             _ => {}
         }
     }
     if polys.is_empty() {
-        let hint = if faces > 0 {
-            " (the file has faces: it looks like a mesh, not a curve network)"
-        } else {
-            ""
-        };
-        return Err(parse_error(
-            source,
-            1,
-            1,
-            format!("no polylines (\"l\" lines) found{hint}"),
-        ));
+        let hint = if faces > 0 { " (the file has faces: it looks like a mesh, not a curve network)" } else { "" };
+        return Err(parse_error(source, 1, 1, format!("no polylines (\"l\" lines) found{hint}")));
     }
     if vn.len() != v.len() {
         return Err(parse_error(
@@ -133,10 +102,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
                     source,
                     *line,
                     *col,
-                    format!(
-                        "vertex index {i} is out of range (the file has {} vertices)",
-                        v.len()
-                    ),
+                    format!("vertex index {i} is out of range (the file has {} vertices)", v.len()),
                 ));
             }
             ids.push(*i as usize - 1);
@@ -157,10 +123,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
 }
 
 pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
-    writeln!(
-        w,
-        "# curve network written by curvenet: v/vn pairs by index, one l per curve"
-    )?;
+    writeln!(w, "# curve network written by curvenet: v/vn pairs by index, one l per curve")?;
     let mut base = 1usize;
     for (ci, c) in net.curves.iter().enumerate() {
         let name = c.name.clone().unwrap_or_else(|| format!("curve{ci}"));

@@ -28,11 +28,7 @@ pub enum Method {
 }
 
 impl Method {
-    pub const ALL: [Method; 3] = [
-        Method::NormalControl,
-        Method::Biharmonic,
-        Method::Triharmonic,
-    ];
+    pub const ALL: [Method; 3] = [Method::NormalControl, Method::Biharmonic, Method::Triharmonic];
 
     /// The name used on the command line and in files.
     pub fn name(self) -> &'static str {
@@ -64,6 +60,28 @@ impl Weighting {
         match self {
             Weighting::Area => "area",
             Weighting::Uniform => "uniform",
+        }
+    }
+}
+
+/// Which Voronoi area `A` divides the sum in the mean-curvature guide ([CG] eq. 1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum GuideArea {
+    /// The area `M` of the Laplacian the fit uses. With the planar metric, `L = M⁻¹Ls` of the
+    /// true surface exceeds `−2HN` by the local area ratio of the projection; dividing `h` by
+    /// the same planar area scales the target by the same ratio, so the bias cancels to first
+    /// order (sphere at 20k vertices: mean error 0.0011 instead of 0.0084).
+    #[default]
+    Mass,
+    /// The Voronoi area of `v*` on the propagated surface `V*`, as [CG] §3.4 states it.
+    Surface,
+}
+
+impl GuideArea {
+    pub fn name(self) -> &'static str {
+        match self {
+            GuideArea::Mass => "mass",
+            GuideArea::Surface => "surface",
         }
     }
 }
@@ -104,13 +122,7 @@ pub(crate) fn known_rows(n: usize, first: usize, cols: &[&[DVec3]]) -> Mat<f64> 
 
 /// Right-hand side of the weighted least-squares system `min Σ_k w_k ‖(Ls X)_k − b_k‖²` on the
 /// unknown rows `first..`: `(Ls diag(w) (b − Ls X̃))_u`, where `X̃` holds the known rows.
-pub(crate) fn weighted_rhs(
-    ls: &Csc,
-    w: &[f64],
-    target: Option<&Mat<f64>>,
-    known: &Mat<f64>,
-    first: usize,
-) -> Mat<f64> {
+pub(crate) fn weighted_rhs(ls: &Csc, w: &[f64], target: Option<&Mat<f64>>, known: &Mat<f64>, first: usize) -> Mat<f64> {
     let n = ls.nrows;
     let k = known.ncols();
     let mut y = Mat::<f64>::zeros(n, k);

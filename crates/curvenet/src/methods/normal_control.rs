@@ -6,7 +6,9 @@
 //! 1. Propagation: `L² V* = 0`, `L² N* = 0` on the free vertices, curve vertices fixed; in
 //!    symmetric form `(Ls M⁻¹ Ls)_ff X_f = −(Ls M⁻¹ Ls)_fc X_c`, one factorisation for the six
 //!    columns; `N*` normalised.
-//! 2. Guide: `H(v) = h(v) · n*(v)` with `h` from eq. 1 on `(V*, N*)` (signed, DESIGN §1).
+//! 2. Guide: `H(v) = h(v) · n*(v)` with `h` from eq. 1 on `(V*, N*)` (signed, DESIGN §1),
+//!    divided by the Laplacian's own Voronoi area `M` ([`GuideArea::Mass`], default) or by the
+//!    area of `v*` on `V*` as the paper states it ([`GuideArea::Surface`]).
 //! 3. Final solve: `min Σ_v w_v ‖(Ls V)_v − b_v‖²`, `b_v = −2 A_v H_v n*_v` (that is
 //!    `L V = −2 H N*`), with `w_v = 1/A_v` (area-weighted, DESIGN §1) or `1/A_v²` ([CG] eq. 2
 //!    as written). Rows of open-boundary vertices are left out (their one-sided Laplacian is
@@ -14,13 +16,11 @@
 //!    propagation's, and its factorisation is reused.
 //! 4. Soft constraints ([CG] §4.5): `+ ω_s Σ_{s ∈ curve} ‖v_s − v*_s‖²`, all vertices unknown.
 
-use super::{
-    check_finite, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings, Weighting,
-};
+use super::{check_finite, known_rows, scatter, weighted_rhs, GuideArea, MethodResult, SolveTimings, Weighting};
 use crate::error::{Error, Result};
 use crate::geom::{fmt_point, DVec3};
 use crate::mesh::Mesh;
-use crate::operators::{blended_mean_curvature, Operators};
+use crate::operators::{blended_mean_curvature, mixed_areas, Operators};
 use crate::solve::Cholesky;
 use crate::sparse::product;
 use faer::Mat;
@@ -30,6 +30,8 @@ use std::time::Instant;
 #[derive(Clone, Copy, Debug, Default)]
 pub struct NormalControlParams {
     pub weighting: Weighting,
+    /// The area dividing eq. 1.
+    pub guide_area: GuideArea,
     /// Soft-constraint weight `ω_s` per curve vertex, already scaled (see
     /// [`crate::Options::soft`]); `None` for hard constraints.
     pub soft_weight: Option<f64>,
@@ -82,7 +84,15 @@ pub fn normal_control(
 
     // 2. Mean-curvature guide (signed).
     let clock = Instant::now();
-    let h = blended_mean_curvature(&mesh.faces, &v_star, &n_star, &mesh.on_boundary);
+    let surface_area;
+    let area = match params.guide_area {
+        GuideArea::Mass => &ops.mass,
+        GuideArea::Surface => {
+            surface_area = mixed_areas(&mesh.faces, &v_star);
+            &surface_area
+        }
+    };
+    let h = blended_mean_curvature(&mesh.faces, &v_star, &n_star, area, &mesh.on_boundary);
     if let Some(i) = h.iter().position(|x| !x.is_finite()) {
         return Err(Error::Numerical(format!(
             "the mean-curvature guide is not finite at vertex {i} (a degenerate triangle?)"
@@ -115,20 +125,12 @@ pub fn normal_control(
         None => {
             if n == nc {
                 t.operators += clock.elapsed().as_secs_f64();
-                return Ok(MethodResult {
-                    positions,
-                    propagated_normals: Some(n_star),
-                    guide_curvature: Some(h),
-                });
+                return Ok(MethodResult { positions, propagated_normals: Some(n_star), guide_curvature: Some(h) });
             }
             let known = known_rows(n, nc, &[&mesh.positions]);
             let rhs = weighted_rhs(&ops.ls, &w, Some(&b), &known, nc);
             let reuse = params.weighting == Weighting::Area && !any_boundary && prop.is_some();
-            let q = if reuse {
-                None
-            } else {
-                Some(product(&ops.ls, &w, &ops.ls, nc))
-            };
+            let q = if reuse { None } else { Some(product(&ops.ls, &w, &ops.ls, nc)) };
             t.operators += clock.elapsed().as_secs_f64();
             let clock = Instant::now();
             let own;
@@ -138,11 +140,7 @@ pub fn normal_control(
                     &own
                 }
                 (None, Some(p)) => p,
-                (None, None) => {
-                    return Err(Error::Numerical(
-                        "internal: no factorisation to reuse".into(),
-                    ))
-                }
+                (None, None) => return Err(Error::Numerical("internal: no factorisation to reuse".into())),
             };
             t.factor += clock.elapsed().as_secs_f64();
             let clock = Instant::now();
@@ -175,9 +173,5 @@ pub fn normal_control(
         }
     }
     check_finite(&positions, "final solve")?;
-    Ok(MethodResult {
-        positions,
-        propagated_normals: Some(n_star),
-        guide_curvature: Some(h),
-    })
+    Ok(MethodResult { positions, propagated_normals: Some(n_star), guide_curvature: Some(h) })
 }

@@ -14,28 +14,17 @@ use crate::sparse::product;
 use std::time::Instant;
 
 /// Solves `Δᵏ V = 0` (`order` 2 or 3) for the free vertices of `mesh`.
-pub fn polyharmonic(
-    mesh: &Mesh,
-    ops: &Operators,
-    order: usize,
-    t: &mut SolveTimings,
-) -> Result<MethodResult> {
+pub fn polyharmonic(mesh: &Mesh, ops: &Operators, order: usize, t: &mut SolveTimings) -> Result<MethodResult> {
     let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
     let mut positions = mesh.positions.clone();
     if n == nc {
-        return Ok(MethodResult {
-            positions,
-            ..Default::default()
-        });
+        return Ok(MethodResult { positions, ..Default::default() });
     }
     let clock = Instant::now();
     let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
     let known = known_rows(n, nc, &[&mesh.positions]);
     let (q, rhs) = if order == 2 {
-        (
-            product(&ops.ls, &inv_m, &ops.ls, nc),
-            weighted_rhs(&ops.ls, &inv_m, None, &known, nc),
-        )
+        (product(&ops.ls, &inv_m, &ops.ls, nc), weighted_rhs(&ops.ls, &inv_m, None, &known, nc))
     } else {
         // T = Ls M⁻¹ Ls; Q₃ = −Ls M⁻¹ T; rhs = −(Q₃ X̃)_f = (Ls M⁻¹ T X̃)_f.
         let tt = crate::sparse::product(&ops.ls, &inv_m, &ops.ls, 0);
@@ -43,25 +32,12 @@ pub fn polyharmonic(
         let q3 = product(&ops.ls, &neg, &tt, nc);
         let mut y = faer::Mat::<f64>::zeros(n, 3);
         tt.mul_dense(known.as_ref(), y.as_mut());
-        let rhs = weighted_rhs(
-            &ops.ls,
-            &inv_m,
-            Some(&y),
-            &faer::Mat::<f64>::zeros(n, 3),
-            nc,
-        );
+        let rhs = weighted_rhs(&ops.ls, &inv_m, Some(&y), &faer::Mat::<f64>::zeros(n, 3), nc);
         (q3, rhs)
     };
     t.operators += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
-    let chol = Cholesky::factor(
-        &q,
-        if order == 2 {
-            "biharmonic system"
-        } else {
-            "triharmonic system"
-        },
-    )?;
+    let chol = Cholesky::factor(&q, if order == 2 { "biharmonic system" } else { "triharmonic system" })?;
     t.factor += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
     let mut sol = rhs;
@@ -69,8 +45,5 @@ pub fn polyharmonic(
     scatter(&sol, 0, nc, &mut positions);
     t.solve += clock.elapsed().as_secs_f64();
     check_finite(&positions, "polyharmonic solve")?;
-    Ok(MethodResult {
-        positions,
-        ..Default::default()
-    })
+    Ok(MethodResult { positions, ..Default::default() })
 }

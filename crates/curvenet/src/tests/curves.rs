@@ -36,9 +36,7 @@ fn resampling_is_uniform_and_exact_at_ends() {
     assert_eq!(r[0].0, p[8]);
     assert_eq!(r[40].0, p[24]);
     let d: Vec<f64> = r.windows(2).map(|w| w[0].0.distance(w[1].0)).collect();
-    let (lo, hi) = d
-        .iter()
-        .fold((f64::MAX, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+    let (lo, hi) = d.iter().fold((f64::MAX, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
     // Equal arcs; the chords differ only by the spline's tiny curvature variation.
     assert!(hi / lo < 1.0 + 1e-5, "{lo} {hi}");
     // Wrapping interval: the whole loop from sample 5.
@@ -49,11 +47,7 @@ fn resampling_is_uniform_and_exact_at_ends() {
 
 #[test]
 fn natural_spline_through_a_line_is_the_line() {
-    let p = vec![
-        DVec3::ZERO,
-        DVec3::new(1.0, 0.0, 0.0),
-        DVec3::new(3.0, 0.0, 0.0),
-    ];
+    let p = vec![DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0), DVec3::new(3.0, 0.0, 0.0)];
     let n = vec![DVec3::Z; 3];
     let s = CurveSpline::fit(&p, &n, false);
     assert!((s.length() - 3.0).abs() < 1e-12);

@@ -22,23 +22,14 @@ fn crossing_segments_meet() {
 
 #[test]
 fn parallel_segments_are_handled() {
-    let (s, t) = closest_params_segment_segment(
-        DVec3::ZERO,
-        DVec3::X,
-        DVec3::new(2.0, 1.0, 0.0),
-        DVec3::new(3.0, 1.0, 0.0),
-    );
+    let (s, t) =
+        closest_params_segment_segment(DVec3::ZERO, DVec3::X, DVec3::new(2.0, 1.0, 0.0), DVec3::new(3.0, 1.0, 0.0));
     assert_eq!((s, t), (1.0, 0.0));
 }
 
 #[test]
 fn square_area() {
-    let sq = [
-        DVec2::new(0.0, 0.0),
-        DVec2::new(1.0, 0.0),
-        DVec2::new(1.0, 1.0),
-        DVec2::new(0.0, 1.0),
-    ];
+    let sq = [DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.0), DVec2::new(1.0, 1.0), DVec2::new(0.0, 1.0)];
     assert!((polygon_signed_area(&sq) - 1.0).abs() < 1e-15);
     let sq3: Vec<DVec3> = sq.iter().map(|p| p.extend(0.0)).collect();
     assert!((polygon_vector_area(&sq3) - DVec3::Z).length() < 1e-15);

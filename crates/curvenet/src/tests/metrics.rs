@@ -3,15 +3,9 @@ use super::*;
 #[test]
 fn closest_points_are_on_the_surfaces() {
     let p = DVec3::new(0.3, -1.7, 0.9);
-    let s = Truth::Sphere {
-        center: DVec3::new(0.1, 0.0, 0.0),
-        radius: 2.0,
-    };
+    let s = Truth::Sphere { center: DVec3::new(0.1, 0.0, 0.0), radius: 2.0 };
     assert!((s.distance(p) - ((p - DVec3::new(0.1, 0.0, 0.0)).length() - 2.0).abs()).abs() < 1e-15);
-    let t = Truth::Torus {
-        major: 4.0,
-        minor: 2.0,
-    };
+    let t = Truth::Torus { major: 4.0, minor: 2.0 };
     assert!((t.distance(DVec3::new(6.5, 0.0, 0.0)) - 0.5).abs() < 1e-15);
     assert!((t.distance(DVec3::new(0.0, 4.0, 1.0)) - 1.0).abs() < 1e-15);
     let sad = Truth::Saddle;
@@ -44,23 +38,14 @@ fn grid_matches_brute_force() {
     let md = MeshDistance::new(&p, &t);
     let mut s = 12345u64;
     let mut rnd = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
+        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
         (s >> 11) as f64 / (1u64 << 53) as f64
     };
     for _ in 0..300 {
         let q = DVec3::new(rnd() * 1.6 - 0.3, rnd() * 1.6 - 0.3, rnd() - 0.5);
         let brute = t
             .iter()
-            .map(|f| {
-                q.distance(closest_point_on_triangle(
-                    q,
-                    p[f[0] as usize],
-                    p[f[1] as usize],
-                    p[f[2] as usize],
-                ))
-            })
+            .map(|f| q.distance(closest_point_on_triangle(q, p[f[0] as usize], p[f[1] as usize], p[f[2] as usize])))
             .fold(f64::INFINITY, f64::min);
         assert!((md.closest(q).0 - brute).abs() < 1e-12, "{q:?}");
     }

@@ -15,12 +15,7 @@ fn normals_are_normalised_and_duplicates_merged() {
     let mut c = line(3);
     c.points.insert(1, c.points[0]);
     c.normals.insert(1, DVec3::Z);
-    let (v, w) = Network {
-        curves: vec![c],
-        snap: None,
-    }
-    .validated()
-    .unwrap();
+    let (v, w) = Network { curves: vec![c], snap: None }.validated().unwrap();
     assert_eq!(v.curves[0].points.len(), 3);
     assert_eq!(v.curves[0].normals[0], DVec3::Z);
     assert_eq!(w.len(), 1);
@@ -31,50 +26,22 @@ fn normals_are_normalised_and_duplicates_merged() {
 fn errors_name_curve_and_sample() {
     let mut c = line(3);
     c.normals[2] = DVec3::ZERO;
-    let e = Network {
-        curves: vec![line(2), c],
-        snap: None,
-    }
-    .validated()
-    .unwrap_err();
+    let e = Network { curves: vec![line(2), c], snap: None }.validated().unwrap_err();
     assert!(e.to_string().contains("curve 1, sample 2"), "{e}");
 
     let mut c = line(3);
     c.points[1].y = f64::NAN;
-    let e = Network {
-        curves: vec![c],
-        snap: None,
-    }
-    .validated()
-    .unwrap_err();
-    assert!(
-        e.to_string().contains("sample 1") && e.to_string().contains("non-finite"),
-        "{e}"
-    );
+    let e = Network { curves: vec![c], snap: None }.validated().unwrap_err();
+    assert!(e.to_string().contains("sample 1") && e.to_string().contains("non-finite"), "{e}");
 
     let mut c = line(3);
     c.normals.pop();
-    let e = Network {
-        curves: vec![c],
-        snap: None,
-    }
-    .validated()
-    .unwrap_err();
+    let e = Network { curves: vec![c], snap: None }.validated().unwrap_err();
     assert!(e.to_string().contains("3 points but 2 normals"), "{e}");
 
-    let e = Network {
-        curves: vec![line(1)],
-        snap: None,
-    }
-    .validated()
-    .unwrap_err();
+    let e = Network { curves: vec![line(1)], snap: None }.validated().unwrap_err();
     assert!(e.to_string().contains("at least 2"), "{e}");
 
-    let e = Network {
-        curves: vec![],
-        snap: None,
-    }
-    .validated()
-    .unwrap_err();
+    let e = Network { curves: vec![], snap: None }.validated().unwrap_err();
     assert!(e.to_string().contains("no curves"), "{e}");
 }

@@ -4,12 +4,7 @@ use faer::Mat;
 #[test]
 fn solves_a_tridiagonal_system() {
     let n = 50;
-    let mut q = Csc {
-        nrows: n,
-        ncols: n,
-        col_ptr: vec![0],
-        ..Default::default()
-    };
+    let mut q = Csc { nrows: n, ncols: n, col_ptr: vec![0], ..Default::default() };
     for j in 0..n {
         for i in j.saturating_sub(1)..(j + 2).min(n) {
             q.row_idx.push(i as u32);
@@ -36,13 +31,8 @@ fn solves_a_tridiagonal_system() {
 
 #[test]
 fn indefinite_is_an_error() {
-    let q = Csc {
-        nrows: 2,
-        ncols: 2,
-        col_ptr: vec![0, 2, 4],
-        row_idx: vec![0, 1, 0, 1],
-        values: vec![1.0, 2.0, 2.0, 1.0],
-    };
+    let q =
+        Csc { nrows: 2, ncols: 2, col_ptr: vec![0, 2, 4], row_idx: vec![0, 1, 0, 1], values: vec![1.0, 2.0, 2.0, 1.0] };
     let e = Cholesky::factor(&q, "toy").err().unwrap();
     assert_eq!(e.exit_code(), 3);
 }

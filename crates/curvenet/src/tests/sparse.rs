@@ -3,12 +3,7 @@ use super::*;
 /// Dense → Csc.
 pub(crate) fn from_dense(a: &[Vec<f64>]) -> Csc {
     let (n, m) = (a.len(), a[0].len());
-    let mut c = Csc {
-        nrows: n,
-        ncols: m,
-        col_ptr: vec![0],
-        ..Default::default()
-    };
+    let mut c = Csc { nrows: n, ncols: m, col_ptr: vec![0], ..Default::default() };
     for j in 0..m {
         for (i, row) in a.iter().enumerate() {
             if row[j] != 0.0 {
@@ -23,11 +18,7 @@ pub(crate) fn from_dense(a: &[Vec<f64>]) -> Csc {
 
 #[test]
 fn product_matches_dense() {
-    let a = vec![
-        vec![2.0, -1.0, 0.0],
-        vec![-1.0, 2.0, -1.0],
-        vec![0.0, -1.0, 1.0],
-    ];
+    let a = vec![vec![2.0, -1.0, 0.0], vec![-1.0, 2.0, -1.0], vec![0.0, -1.0, 1.0]];
     let d = [0.5, 0.0, 3.0];
     let ca = from_dense(&a);
     let p = product(&ca, &d, &ca, 1);

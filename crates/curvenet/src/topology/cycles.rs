@@ -130,16 +130,9 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
     }
     // A 2-manifold's border passes through a node once or not at all: 0 or 2 boundary ends.
     for (v, list) in ends.iter().enumerate() {
-        let boundary: Vec<usize> = list
-            .iter()
-            .filter(|(s, _)| g.segments[*s].boundary)
-            .map(|(s, _)| *s)
-            .collect();
+        let boundary: Vec<usize> = list.iter().filter(|(s, _)| g.segments[*s].boundary).map(|(s, _)| *s).collect();
         if boundary.len() != 0 && boundary.len() != 2 {
-            let mut names: Vec<&str> = boundary
-                .iter()
-                .map(|&s| g.labels[g.segments[s].curve].as_str())
-                .collect();
+            let mut names: Vec<&str> = boundary.iter().map(|&s| g.labels[g.segments[s].curve].as_str()).collect();
             names.dedup();
             return Err(Error::Topology(format!(
                 "{} boundary segment ends meet at {} ({}): the surface is not a 2-manifold there — a segment \
@@ -160,11 +153,7 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
         for &(s, at_start) in list {
             let seg = &g.segments[s];
             let sp = &splines[seg.curve];
-            let d = if at_start {
-                sp.tangent(sp.knot(seg.first), true)
-            } else {
-                -sp.tangent(sp.knot(seg.last), false)
-            };
+            let d = if at_start { sp.tangent(sp.knot(seg.first), true) } else { -sp.tangent(sp.knot(seg.last), false) };
             let proj = d - normal * d.dot(normal);
             if proj.length() <= 1e-3 * d.length() || !proj.is_finite() {
                 return Err(Error::Topology(format!(
@@ -185,18 +174,11 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
     let next = |h: HalfEdge| -> HalfEdge {
         let seg = &g.segments[h.segment];
         // Arrive at the far node through the far end of the segment.
-        let (v, arrive_at_start) = if h.forward {
-            (seg.end, false)
-        } else {
-            (seg.start, true)
-        };
+        let (v, arrive_at_start) = if h.forward { (seg.end, false) } else { (seg.start, true) };
         let list = &sorted[v];
         let p = slot[h.segment][if arrive_at_start { 0 } else { 1 }];
         let (s, at_start) = list[(p + list.len() - 1) % list.len()];
-        HalfEdge {
-            segment: s,
-            forward: at_start,
-        }
+        HalfEdge { segment: s, forward: at_start }
     };
 
     // Trace faces.
@@ -204,10 +186,7 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
     let mut faces: Vec<Vec<HalfEdge>> = Vec::new();
     for s in 0..ns {
         for forward in [true, false] {
-            let h0 = HalfEdge {
-                segment: s,
-                forward,
-            };
+            let h0 = HalfEdge { segment: s, forward };
             if face_of[he_index(h0)] != usize::MAX {
                 continue;
             }
@@ -222,9 +201,7 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
                     break;
                 }
                 if face.len() > 2 * ns {
-                    return Err(Error::Topology(
-                        "internal error: face tracing did not close".into(),
-                    ));
+                    return Err(Error::Topology("internal error: face tracing did not close".into()));
                 }
             }
             faces.push(face);
@@ -244,11 +221,7 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
         let (a, b) = (find(&mut comp, seg.start), find(&mut comp, seg.end));
         comp[a.max(b)] = a.min(b);
     }
-    let seg_root: Vec<usize> = g
-        .segments
-        .iter()
-        .map(|seg| find(&mut comp, seg.start))
-        .collect();
+    let seg_root: Vec<usize> = g.segments.iter().map(|seg| find(&mut comp, seg.start)).collect();
     let mut has_interior = vec![false; g.nodes.len()];
     for (s, seg) in g.segments.iter().enumerate() {
         if !seg.boundary {
@@ -285,10 +258,7 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
             continue;
         }
         let real = |forward: bool| {
-            let f = face_of[he_index(HalfEdge {
-                segment: s,
-                forward,
-            })];
+            let f = face_of[he_index(HalfEdge { segment: s, forward })];
             faces[f].iter().any(|h| !g.segments[h.segment].boundary)
         };
         match (real(true), real(false)) {
@@ -324,9 +294,8 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
             continue;
         }
         let in_part = |s: &usize| seg_root[*s] == root;
-        let simple = (0..ns)
-            .filter(in_part)
-            .all(|s| ends[g.segments[s].start].len() == 2 && ends[g.segments[s].end].len() == 2);
+        let simple =
+            (0..ns).filter(in_part).all(|s| ends[g.segments[s].start].len() == 2 && ends[g.segments[s].end].len() == 2);
         if fs.len() != 2 || !simple {
             let seg = (0..ns).find(in_part).unwrap_or(0);
             return Err(Error::Topology(format!(
@@ -340,13 +309,7 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
         let (points, normals) = loop_samples(g, &a);
         let centroid = points.iter().sum::<DVec3>() / points.len() as f64;
         let axis = polygon_vector_area(&points).normalize_or_zero();
-        lones.push(Lone {
-            faces: [a, b],
-            points,
-            normals,
-            centroid,
-            axis,
-        });
+        lones.push(Lone { faces: [a, b], points, normals, centroid, axis });
     }
     // Pair loops that face each other into tubes; nearest pairs first.
     let cos45 = std::f64::consts::FRAC_1_SQRT_2;
@@ -356,10 +319,7 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
             let d = lones[j].centroid - lones[i].centroid;
             let dist = d.length();
             let dh = d.normalize_or_zero();
-            if dh == DVec3::ZERO
-                || lones[i].axis.dot(dh).abs() < cos45
-                || lones[j].axis.dot(dh).abs() < cos45
-            {
+            if dh == DVec3::ZERO || lones[i].axis.dot(dh).abs() < cos45 || lones[j].axis.dot(dh).abs() < cos45 {
                 continue;
             }
             let si = conormal_score(&lones[i].points, &lones[i].normals, |_| dh);
@@ -378,16 +338,8 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
         used[i] = true;
         used[j] = true;
         // The traversal whose conormal points to the other loop keeps the tube on its left.
-        let li = if si > 0.0 {
-            lones[i].faces[0].clone()
-        } else {
-            lones[i].faces[1].clone()
-        };
-        let lj = if sj > 0.0 {
-            lones[j].faces[0].clone()
-        } else {
-            lones[j].faces[1].clone()
-        };
+        let li = if si > 0.0 { lones[i].faces[0].clone() } else { lones[i].faces[1].clone() };
+        let lj = if sj > 0.0 { lones[j].faces[0].clone() } else { lones[j].faces[1].clone() };
         patches.push(Patch::Tube([li, lj]));
     }
     for (i, l) in lones.iter().enumerate() {
@@ -412,11 +364,7 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
             }
             s > 0.0
         };
-        patches.push(Patch::Disk(if first {
-            l.faces[0].clone()
-        } else {
-            l.faces[1].clone()
-        }));
+        patches.push(Patch::Disk(if first { l.faces[0].clone() } else { l.faces[1].clone() }));
     }
     Ok(patches)
 }

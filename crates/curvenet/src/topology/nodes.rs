@@ -120,11 +120,7 @@ impl UnionFind {
 type Cell = (i64, i64, i64);
 
 fn cell_of(p: DVec3, h: f64) -> Cell {
-    (
-        (p.x / h).floor() as i64,
-        (p.y / h).floor() as i64,
-        (p.z / h).floor() as i64,
-    )
+    ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64)
 }
 
 /// Finds the nodes of a validated network and splits its curves into segments.
@@ -162,8 +158,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
         let p = &curves[c].points;
         (p[e], p[(e + 1) % p.len()])
     };
-    let arc_at =
-        |l: Loc| arcs[l.curve][l.edge] + l.s * (arcs[l.curve][l.edge + 1] - arcs[l.curve][l.edge]);
+    let arc_at = |l: Loc| arcs[l.curve][l.edge] + l.s * (arcs[l.curve][l.edge + 1] - arcs[l.curve][l.edge]);
     // Distance along a curve between two arc positions (the shorter way round on loops).
     let along = |c: usize, a: f64, b: f64| {
         let d = (a - b).abs();
@@ -175,10 +170,8 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
     };
 
     // Spatial hash of edge boxes inflated by the tolerance.
-    let mut lengths: Vec<f64> = edges
-        .iter()
-        .map(|&(c, e)| arcs[c as usize][e as usize + 1] - arcs[c as usize][e as usize])
-        .collect();
+    let mut lengths: Vec<f64> =
+        edges.iter().map(|&(c, e)| arcs[c as usize][e as usize + 1] - arcs[c as usize][e as usize]).collect();
     lengths.sort_by(f64::total_cmp);
     let median = lengths[lengths.len() / 2];
     let h = (2.0 * snap).max(median).max(f64::MIN_POSITIVE);
@@ -219,8 +212,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
                 let (cb, eb) = (edges[kb as usize].0 as usize, edges[kb as usize].1 as usize);
                 if ca == cb {
                     let m = num_edges(ca);
-                    let adjacent =
-                        ea.abs_diff(eb) <= 1 || (curves[ca].closed && ea.abs_diff(eb) == m - 1);
+                    let adjacent = ea.abs_diff(eb) <= 1 || (curves[ca].closed && ea.abs_diff(eb) == m - 1);
                     if adjacent {
                         continue;
                     }
@@ -232,24 +224,12 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
                 if pa.distance(pb) > snap {
                     continue;
                 }
-                let a = Loc {
-                    curve: ca,
-                    edge: ea,
-                    s,
-                };
-                let b = Loc {
-                    curve: cb,
-                    edge: eb,
-                    s: t,
-                };
+                let a = Loc { curve: ca, edge: ea, s };
+                let b = Loc { curve: cb, edge: eb, s: t };
                 if ca == cb && along(ca, arc_at(a), arc_at(b)) <= 4.0 * snap {
                     continue; // the same stretch of curve (dense samples within the tolerance)
                 }
-                hits.push(Hit {
-                    mid: 0.5 * (pa + pb),
-                    a,
-                    b,
-                });
+                hits.push(Hit { mid: 0.5 * (pa + pb), a, b });
             }
         }
     }
@@ -326,20 +306,13 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
         let mut i = 0;
         while i < locs.len() {
             let mut j = i + 1;
-            while j < locs.len()
-                && locs[j].0 == locs[i].0
-                && along(locs[i].0, locs[j].1, locs[j - 1].1) <= 4.0 * snap
-            {
+            while j < locs.len() && locs[j].0 == locs[i].0 && along(locs[i].0, locs[j].1, locs[j - 1].1) <= 4.0 * snap {
                 j += 1;
             }
             let c = locs[i].0;
             let extent = along(c, locs[j - 1].1, locs[i].1);
             if extent > 8.0 * snap {
-                let others: Vec<&str> = locs
-                    .iter()
-                    .filter(|l| l.0 != c)
-                    .map(|l| labels[l.0].as_str())
-                    .collect();
+                let others: Vec<&str> = locs.iter().filter(|l| l.0 != c).map(|l| labels[l.0].as_str()).collect();
                 let other = others.first().copied().unwrap_or("itself");
                 return Err(Error::Input(format!(
                     "{} runs within the snapping tolerance ({snap:.3e}) of {other} for a length of {extent:.3e} near {}: \
@@ -355,10 +328,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
         // A closed curve's run may straddle its seam (arc 0 / length): merge first and last.
         let mut merged: Vec<(usize, f64, Loc)> = Vec::new();
         for p in passages {
-            if !merged
-                .iter()
-                .any(|q| q.0 == p.0 && along(p.0, p.1, q.1) <= 4.0 * snap)
-            {
+            if !merged.iter().any(|q| q.0 == p.0 && along(p.0, p.1, q.1) <= 4.0 * snap) {
                 merged.push(p);
             }
         }
@@ -372,12 +342,9 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
                     continue;
                 }
                 for side in [-1.0, 1.0] {
-                    let Some(probe) = polyline_at_arc(
-                        &curves[pa.0].points,
-                        &arcs[pa.0],
-                        curves[pa.0].closed,
-                        pa.1 + side * delta,
-                    ) else {
+                    let Some(probe) =
+                        polyline_at_arc(&curves[pa.0].points, &arcs[pa.0], curves[pa.0].closed, pa.1 + side * delta)
+                    else {
                         continue;
                     };
                     let d = polyline_distance(
@@ -401,8 +368,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
                 }
             }
         }
-        let position =
-            passages.iter().map(|p| point_at(p.2)).sum::<DVec3>() / passages.len() as f64;
+        let position = passages.iter().map(|p| point_at(p.2)).sum::<DVec3>() / passages.len() as f64;
         let normals: Vec<DVec3> = passages.iter().map(|p| normal_at(p.2)).collect();
         for a in 0..normals.len() {
             for b in a + 1..normals.len() {
@@ -420,11 +386,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
             }
         }
         let normal = normals.iter().sum::<DVec3>().normalize_or_zero();
-        let normal = if normal == DVec3::ZERO {
-            normals[0]
-        } else {
-            normal
-        };
+        let normal = if normal == DVec3::ZERO { normals[0] } else { normal };
         let id = nodes.len();
         nodes.push(Node { position, normal });
         for p in &passages {
@@ -437,31 +399,19 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
         let total = arcs[c][arcs[c].len() - 1];
         if curve.closed {
             if on_curve[c].is_empty() {
-                nodes.push(Node {
-                    position: curve.points[0],
-                    normal: curve.normals[0],
-                });
+                nodes.push(Node { position: curve.points[0], normal: curve.normals[0] });
                 on_curve[c].push((0.0, nodes.len() - 1));
             }
             continue;
         }
-        let near = |x: f64, list: &[(f64, usize)]| {
-            list.iter()
-                .any(|&(a, _)| (a - x).abs() <= snap.max(1e-12 * total))
-        };
+        let near = |x: f64, list: &[(f64, usize)]| list.iter().any(|&(a, _)| (a - x).abs() <= snap.max(1e-12 * total));
         let last = curve.points.len() - 1;
         if !near(0.0, &on_curve[c]) {
-            nodes.push(Node {
-                position: curve.points[0],
-                normal: curve.normals[0],
-            });
+            nodes.push(Node { position: curve.points[0], normal: curve.normals[0] });
             on_curve[c].push((0.0, nodes.len() - 1));
         }
         if !near(total, &on_curve[c]) {
-            nodes.push(Node {
-                position: curve.points[last],
-                normal: curve.normals[last],
-            });
+            nodes.push(Node { position: curve.points[last], normal: curve.normals[last] });
             on_curve[c].push((total, nodes.len() - 1));
         }
     }
@@ -478,11 +428,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
         let mut snapped: Vec<Option<usize>> = vec![None; n];
         let mut inserts: Vec<(usize, f64, usize)> = Vec::new(); // (edge, arc, node)
         for &(a, node) in list.iter() {
-            let a = if curve.closed {
-                a.rem_euclid(total)
-            } else {
-                a.clamp(0.0, total)
-            };
+            let a = if curve.closed { a.rem_euclid(total) } else { a.clamp(0.0, total) };
             let e = (arc.partition_point(|&x| x <= a).max(1) - 1).min(arc.len() - 2);
             let len = arc[e + 1] - arc[e];
             let (d0, d1) = (a - arc[e], arc[e + 1] - a);
@@ -564,30 +510,11 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
         let pairs = if sc.closed { k } else { k - 1 };
         for j in 0..pairs {
             let (first, start) = sc.nodes[j];
-            let (last, end) = if j + 1 < k {
-                sc.nodes[j + 1]
-            } else {
-                (m, sc.nodes[0].1)
-            };
-            segments.push(Segment {
-                curve: c,
-                first,
-                last,
-                start,
-                end,
-                boundary: sc.boundary,
-            });
+            let (last, end) = if j + 1 < k { sc.nodes[j + 1] } else { (m, sc.nodes[0].1) };
+            segments.push(Segment { curve: c, first, last, start, end, boundary: sc.boundary });
         }
     }
-    Ok((
-        Graph {
-            nodes,
-            curves: split,
-            segments,
-            labels,
-        },
-        warnings,
-    ))
+    Ok((Graph { nodes, curves: split, segments, labels }, warnings))
 }
 
 /// How far from a node (in snapping tolerances) two curves must have separated for the node to
@@ -613,14 +540,7 @@ fn polyline_at_arc(points: &[DVec3], arc: &[f64], closed: bool, s: f64) -> Optio
 }
 
 /// Distance from `p` to the part of a polyline within arc length `half` of `center`.
-fn polyline_distance(
-    points: &[DVec3],
-    arc: &[f64],
-    closed: bool,
-    center: f64,
-    half: f64,
-    p: DVec3,
-) -> f64 {
+fn polyline_distance(points: &[DVec3], arc: &[f64], closed: bool, center: f64, half: f64, p: DVec3) -> f64 {
     let total = arc[arc.len() - 1];
     let m = arc.len() - 1;
     let mut best = f64::INFINITY;
@@ -642,20 +562,14 @@ fn polyline_distance(
         }
         let (q0, q1) = (points[e], points[(e + 1) % points.len()]);
         let d = q1 - q0;
-        let t = if d.length_squared() > 0.0 {
-            ((p - q0).dot(d) / d.length_squared()).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
+        let t = if d.length_squared() > 0.0 { ((p - q0).dot(d) / d.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
         best = best.min(p.distance(q0 + t * d));
     }
     best
 }
 
 fn total_scale(points: &[DVec3]) -> f64 {
-    Aabb::of(points.iter().copied())
-        .diagonal()
-        .max(f64::MIN_POSITIVE)
+    Aabb::of(points.iter().copied()).diagonal().max(f64::MIN_POSITIVE)
 }
 
 #[cfg(test)]

@@ -23,20 +23,12 @@ fn round_trip() {
 fn malformed_reports_line_and_column() {
     let text = "{\"curves\": [\n  {\"points\": [[0,0,0],[1,0]],\n \"normals\": []}]}";
     match parse(text, "x.json") {
-        Err(Error::Parse {
-            line,
-            column,
-            message,
-            ..
-        }) => {
+        Err(Error::Parse { line, column, message, .. }) => {
             assert_eq!(line, 2);
             assert!(column > 20, "{column}");
             assert!(message.contains("length"), "{message}");
         }
         other => panic!("{other:?}"),
     }
-    assert!(matches!(
-        parse("{\"curves\": [", "x"),
-        Err(Error::Parse { line: 1, .. })
-    ));
+    assert!(matches!(parse("{\"curves\": [", "x"), Err(Error::Parse { line: 1, .. })));
 }

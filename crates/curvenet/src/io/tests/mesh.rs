@@ -2,12 +2,7 @@ use super::*;
 
 fn tetra() -> MeshFile {
     MeshFile {
-        positions: vec![
-            DVec3::ZERO,
-            DVec3::X,
-            DVec3::Y,
-            DVec3::new(0.1, 0.2, 1.0 / 3.0),
-        ],
+        positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(0.1, 0.2, 1.0 / 3.0)],
         faces: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]],
         normals: Some(vec![DVec3::Z, DVec3::X, DVec3::Y, DVec3::Z]),
         mean_curvature: Some(vec![1.0, -0.5, 0.25, 2.0]),

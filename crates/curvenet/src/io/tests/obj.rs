@@ -16,29 +16,9 @@ fn reads_closed_boundary_polylines() {
 #[test]
 fn errors_have_positions() {
     let e = parse("v 0 0 0\nv 1 0 0\nvn 0 0 1\nvn 0 0 1\nl 1 7\n", "t.obj").unwrap_err();
-    assert!(
-        matches!(
-            e,
-            Error::Parse {
-                line: 5,
-                column: 5,
-                ..
-            }
-        ),
-        "{e}"
-    );
+    assert!(matches!(e, Error::Parse { line: 5, column: 5, .. }), "{e}");
     let e = parse("v 0 zero 0\n", "t.obj").unwrap_err();
-    assert!(
-        matches!(
-            e,
-            Error::Parse {
-                line: 1,
-                column: 5,
-                ..
-            }
-        ),
-        "{e}"
-    );
+    assert!(matches!(e, Error::Parse { line: 1, column: 5, .. }), "{e}");
     let e = parse("v 0 0 0\nv 1 0 0\nvn 0 0 1\nl 1 2\n", "t.obj").unwrap_err();
     assert!(e.to_string().contains("2 \"v\" lines but 1 \"vn\""), "{e}");
 }

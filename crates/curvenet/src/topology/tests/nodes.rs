@@ -14,21 +14,12 @@ fn circle(axis: usize, n: usize, phase: f64) -> Curve {
             }
         })
         .collect();
-    Curve {
-        name: None,
-        normals: points.clone(),
-        points,
-        closed: true,
-        boundary: false,
-    }
+    Curve { name: None, normals: points.clone(), points, closed: true, boundary: false }
 }
 
 #[test]
 fn three_great_circles_with_shared_samples() {
-    let net = Network {
-        curves: (0..3).map(|a| circle(a, 64, 0.0)).collect(),
-        snap: None,
-    };
+    let net = Network { curves: (0..3).map(|a| circle(a, 64, 0.0)).collect(), snap: None };
     let (g, _) = find_nodes(&net, net.snap_tolerance()).unwrap();
     assert_eq!(g.nodes.len(), 6);
     assert_eq!(g.segments.len(), 12);
@@ -41,10 +32,7 @@ fn three_great_circles_with_shared_samples() {
 #[test]
 fn crossings_between_samples_are_found() {
     // Odd sample counts with a phase: no crossing is a sample.
-    let net = Network {
-        curves: vec![circle(0, 61, 0.1), circle(1, 67, 0.05), circle(2, 71, 0.2)],
-        snap: Some(5e-3),
-    };
+    let net = Network { curves: vec![circle(0, 61, 0.1), circle(1, 67, 0.05), circle(2, 71, 0.2)], snap: Some(5e-3) };
     let (g, _) = find_nodes(&net, 5e-3).unwrap();
     assert_eq!(g.nodes.len(), 6, "{:?}", g.nodes);
     assert_eq!(g.segments.len(), 12);
@@ -60,23 +48,15 @@ fn crossings_between_samples_are_found() {
 fn flipped_normals_are_an_orientation_error() {
     let mut b = circle(1, 64, 0.0);
     b.normals.iter_mut().for_each(|n| *n = -*n);
-    let net = Network {
-        curves: vec![circle(0, 64, 0.0), b],
-        snap: None,
-    };
-    let Err(e) = find_nodes(&net, net.snap_tolerance()) else {
-        panic!("accepted")
-    };
+    let net = Network { curves: vec![circle(0, 64, 0.0), b], snap: None };
+    let Err(e) = find_nodes(&net, net.snap_tolerance()) else { panic!("accepted") };
     assert!(e.to_string().contains("curve 0 and curve 1 meet"), "{e}");
     assert!(e.to_string().contains("180°"), "{e}");
 }
 
 #[test]
 fn overlapping_curves_are_rejected() {
-    let net = Network {
-        curves: vec![circle(0, 64, 0.0), circle(0, 64, 0.01)],
-        snap: None,
-    };
+    let net = Network { curves: vec![circle(0, 64, 0.0), circle(0, 64, 0.01)], snap: None };
     match find_nodes(&net, net.snap_tolerance()) {
         Err(e) => assert!(e.to_string().contains("overlapping"), "{e}"),
         Ok((g, _)) => panic!("accepted with {} nodes", g.nodes.len()),
@@ -92,21 +72,8 @@ fn open_curve_ends_are_nodes() {
         closed: false,
         boundary: false,
     };
-    let net = Network {
-        curves: vec![c],
-        snap: None,
-    };
+    let net = Network { curves: vec![c], snap: None };
     let (g, _) = find_nodes(&net, net.snap_tolerance()).unwrap();
     assert_eq!(g.nodes.len(), 2);
-    assert_eq!(
-        g.segments,
-        vec![Segment {
-            curve: 0,
-            first: 0,
-            last: 2,
-            start: 0,
-            end: 1,
-            boundary: false
-        }]
-    );
+    assert_eq!(g.segments, vec![Segment { curve: 0, first: 0, last: 2, start: 0, end: 1, boundary: false }]);
 }
