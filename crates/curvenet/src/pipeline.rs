@@ -44,6 +44,9 @@ pub struct Options {
     /// Laplacian's own (default, consistent with the fit) or that of the propagated surface
     /// (the paper's wording).
     pub guide_area: GuideArea,
+    /// `--guide-updates K`: how many times the mean-curvature guide is re-estimated on the
+    /// fitted surface and the fit repeated (same factorisation; 0 is the paper). Default 1.
+    pub guide_updates: usize,
     /// `--snap S`: snapping tolerance for curves meeting between samples; overrides the
     /// network's `snap`. Default: 1e-3 × the bounding-box diagonal.
     pub snap: Option<f64>,
@@ -66,6 +69,7 @@ impl Default for Options {
             weights: Metric::Planar,
             energy: Weighting::Area,
             guide_area: GuideArea::Mass,
+            guide_updates: 1,
             snap: None,
         }
     }
@@ -293,7 +297,12 @@ pub fn surface_with_progress(
                 normal_control(
                     &mesh,
                     &ops,
-                    &NormalControlParams { weighting: options.energy, guide_area: options.guide_area, soft_weight },
+                    &NormalControlParams {
+                        weighting: options.energy,
+                        guide_area: options.guide_area,
+                        guide_updates: options.guide_updates,
+                        soft_weight,
+                    },
                     st,
                 )
             }

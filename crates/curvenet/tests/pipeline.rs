@@ -5,7 +5,7 @@ use curvenet::examples::{example, example_truth};
 use curvenet::geom::DVec3;
 use curvenet::metrics::{distance_to_truth, DistanceStats, MeshDistance, Truth};
 use curvenet::topology::{find_nodes, find_patches, Patch};
-use curvenet::{surface, Curve, Method, Network, Options};
+use curvenet::{surface, Curve, GuideArea, Method, Network, Options};
 use std::f64::consts::TAU;
 
 /// (nodes, segments, patches) of a network.
@@ -63,6 +63,16 @@ fn sphere_accuracy_and_method_ordering() {
     assert!(nc.mean <= 0.0100, "{nc:?}");
     assert!(nc.mean < bi.mean && bi.mean < tri.mean);
     assert!(nc.count > 18_000 && nc.count < 22_000, "{}", nc.count);
+    // The paper as written: guide divided by the area of V*, no guide update. A faithful
+    // implementation measured 0.0085.
+    let net = example("sphere").unwrap();
+    let paper = Options { guide_area: GuideArea::Surface, guide_updates: 0, ..Default::default() };
+    let s = surface(&net, &paper).unwrap();
+    let p = distance_to_truth(&s.mesh.positions, s.mesh.num_curve, &example_truth("sphere").unwrap());
+    eprintln!("sphere mean distance, the paper's variant: {:.5}", p.mean);
+    assert!((p.mean / 0.0085 - 1.0).abs() < 0.2 && p.mean <= 0.0100, "{p:?}");
+    // The consistent guide area and one guide update are what make the default better.
+    assert!(nc.mean < 0.5 * p.mean);
 }
 
 #[test]
@@ -85,7 +95,10 @@ fn normal_control_shapes_tubes() {
     eprintln!("mid-height radius: barrel {barrel:.4}, cylinder {cylinder:.4}, bottleneck {bottleneck:.4}");
     assert!(barrel >= 1.10, "{barrel}");
     assert!(bottleneck <= 0.90, "{bottleneck}");
-    assert!((cylinder - 1.0).abs() < 0.02, "{cylinder}");
+    assert!((cylinder - 1.0).abs() < 0.002, "{cylinder}");
+    let s = run(&example("cylinder").unwrap(), Method::NormalControl);
+    let e = distance_to_truth(&s.mesh.positions, s.mesh.num_curve, &example_truth("cylinder").unwrap());
+    assert!(e.max < 1e-3, "{e:?}");
     // Positions-only baselines cannot tell the three apart.
     let b1 = mid_radius(&run(&example("barrel").unwrap(), Method::Biharmonic));
     let b2 = mid_radius(&run(&example("bottleneck").unwrap(), Method::Biharmonic));
