@@ -139,23 +139,6 @@ pub fn surface(network: &Network, options: &Options) -> Result<Surface> {
     surface_with_progress(network, options, &mut |_, _, _| {})
 }
 
-/// Number of connected components of the segment graph.
-fn components(g: &Graph) -> usize {
-    let mut parent: Vec<usize> = (0..g.nodes.len()).collect();
-    fn find(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
-    for s in &g.segments {
-        let (a, b) = (find(&mut parent, s.start), find(&mut parent, s.end));
-        parent[a.max(b)] = a.min(b);
-    }
-    (0..g.nodes.len()).filter(|&i| find(&mut parent, i) == i).count()
-}
-
 /// Sizes that predict the vertex count: free vertices ≈ `c A / d²` over the patches' projected
 /// area `A`, curve vertices ≈ `ℓ / d` over the segments' length `ℓ`.
 struct SizeModel {
@@ -331,7 +314,10 @@ pub fn surface_with_progress(
         faces: mesh.faces.len(),
         curve_vertices: mesh.num_curve,
         cycles: patches.len(),
-        components: components(&g),
+        components: {
+            let c = g.node_components();
+            (0..c.len()).filter(|&i| c[i] == i).count()
+        },
         nodes: g.nodes.len(),
         segments: g.segments.len(),
         spacing: d,

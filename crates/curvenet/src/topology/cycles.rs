@@ -209,19 +209,8 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
     }
 
     // Connected components of the segment graph.
-    let mut comp: Vec<usize> = (0..g.nodes.len()).collect();
-    fn find(c: &mut [usize], mut i: usize) -> usize {
-        while c[i] != i {
-            c[i] = c[c[i]];
-            i = c[i];
-        }
-        i
-    }
-    for seg in &g.segments {
-        let (a, b) = (find(&mut comp, seg.start), find(&mut comp, seg.end));
-        comp[a.max(b)] = a.min(b);
-    }
-    let seg_root: Vec<usize> = g.segments.iter().map(|seg| find(&mut comp, seg.start)).collect();
+    let comp = g.node_components();
+    let seg_root: Vec<usize> = g.segments.iter().map(|seg| comp[seg.start]).collect();
     let mut has_interior = vec![false; g.nodes.len()];
     for (s, seg) in g.segments.iter().enumerate() {
         if !seg.boundary {

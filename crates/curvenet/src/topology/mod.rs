@@ -6,3 +6,27 @@ pub mod nodes;
 
 pub use cycles::{find_patches, HalfEdge, Patch};
 pub use nodes::{find_nodes, Graph, Node, Segment, SplitCurve};
+
+/// Disjoint sets over `0..n` with path halving; roots are the smallest members.
+pub(crate) struct UnionFind(Vec<usize>);
+
+impl UnionFind {
+    pub fn new(n: usize) -> Self {
+        UnionFind((0..n).collect())
+    }
+
+    pub fn find(&mut self, mut i: usize) -> usize {
+        while self.0[i] != i {
+            self.0[i] = self.0[self.0[i]];
+            i = self.0[i];
+        }
+        i
+    }
+
+    pub fn union(&mut self, a: usize, b: usize) {
+        let (a, b) = (self.find(a), self.find(b));
+        if a != b {
+            self.0[a.max(b)] = a.min(b);
+        }
+    }
+}

@@ -10,6 +10,7 @@
 //! otherwise); its normal is the average of the normals the curves give there. Curves whose
 //! normals disagree by more than 90° at a node are an orientation error.
 
+use super::UnionFind;
 use crate::error::{Error, Result, Warning};
 use crate::geom::{closest_params_segment_segment, fmt_point, Aabb, DVec3};
 use crate::network::{curve_label, Network};
@@ -76,6 +77,15 @@ impl Graph {
         )
     }
 
+    /// The connected component of every node (its smallest node index), through segments.
+    pub fn node_components(&self) -> Vec<usize> {
+        let mut uf = UnionFind::new(self.nodes.len());
+        for s in &self.segments {
+            uf.union(s.start, s.end);
+        }
+        (0..self.nodes.len()).map(|i| uf.find(i)).collect()
+    }
+
     /// `node 3 at (x, y, z)`, for messages.
     pub fn describe_node(&self, n: usize) -> String {
         format!("node {n} at {}", fmt_point(self.nodes[n].position))
@@ -94,27 +104,6 @@ struct Hit {
     mid: DVec3,
     a: Loc,
     b: Loc,
-}
-
-struct UnionFind(Vec<usize>);
-
-impl UnionFind {
-    fn new(n: usize) -> Self {
-        UnionFind((0..n).collect())
-    }
-    fn find(&mut self, mut i: usize) -> usize {
-        while self.0[i] != i {
-            self.0[i] = self.0[self.0[i]];
-            i = self.0[i];
-        }
-        i
-    }
-    fn union(&mut self, a: usize, b: usize) {
-        let (a, b) = (self.find(a), self.find(b));
-        if a != b {
-            self.0[a.max(b)] = a.min(b);
-        }
-    }
 }
 
 type Cell = (i64, i64, i64);
