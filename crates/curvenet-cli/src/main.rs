@@ -4,7 +4,7 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use curvenet::io::{read_network, stage_mesh, write_network, Staged};
 use curvenet::metrics::{distance_to_truth, Truth};
-use curvenet::{examples, Error, GuideArea, Method, Metric, Options, Weighting};
+use curvenet::{examples, Error, GuideArea, Method, Options, Weighting};
 use std::io::{IsTerminal, Write};
 
 /// `println!` that ignores a closed stdout (`curvenet … | head`) instead of panicking.
@@ -64,14 +64,6 @@ enum MethodArg {
 }
 
 #[derive(Clone, Copy, ValueEnum)]
-enum WeightsArg {
-    /// Cotangent weights from the planar triangulations of the patches (the paper).
-    Planar,
-    /// Weights from the 3D surface: one more solve on the first result.
-    Surface,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
 enum EnergyArg {
     /// Σ A_v ‖ΔV + 2H n*‖²: one factorisation serves propagation and fit.
     Area,
@@ -108,9 +100,17 @@ struct SurfaceArgs {
     /// curves more closely.
     #[arg(long, value_name = "W")]
     soft: Option<f64>,
-    /// Where cotangent weights are measured.
-    #[arg(long, value_enum, default_value = "planar")]
-    weights: WeightsArg,
+    /// Iterations with cotangent weights rebuilt on the 3D surface (0: the paper's planar weights).
+    /// The loop stops earlier when it converges.
+    #[arg(long, value_name = "K", default_value_t = Options::DEFAULT_ITERATIONS)]
+    iterations: usize,
+    /// Convergence threshold of the iterations: largest vertex move, as a fraction of the spacing.
+    #[arg(long, value_name = "T", default_value_t = Options::DEFAULT_TOLERANCE)]
+    tolerance: f64,
+    /// Scale of the iterations' pull of the propagated normals towards the surface's, as a
+    /// fraction of the mean patch size (0: none).
+    #[arg(long, value_name = "S", default_value_t = Options::DEFAULT_NORMAL_PRIOR)]
+    normal_prior: f64,
     /// Weighting of the normal-control energy.
     #[arg(long, value_enum, default_value = "area")]
     energy: EnergyArg,
@@ -179,10 +179,9 @@ fn options(a: &SurfaceArgs) -> Options {
         spacing: a.spacing,
         vertices: Some(a.vertices),
         soft: a.soft,
-        weights: match a.weights {
-            WeightsArg::Planar => Metric::Planar,
-            WeightsArg::Surface => Metric::Surface,
-        },
+        iterations: a.iterations,
+        tolerance: a.tolerance,
+        normal_prior: a.normal_prior,
         energy: match a.energy {
             EnergyArg::Area => Weighting::Area,
             EnergyArg::Uniform => Weighting::Uniform,

@@ -6,6 +6,7 @@ use crate::error::{Error, Result, Warning};
 use crate::geom::DVec3;
 use crate::io::MeshData;
 use crate::mesh::Mesh;
+use crate::methods::iterated::{iterate, IterationParams, Stop};
 use crate::methods::normal_control::{normal_control, NormalControlParams};
 use crate::methods::polyharmonic::polyharmonic;
 use crate::methods::{GuideArea, Method, MethodResult, SolveTimings, Weighting};
@@ -35,9 +36,15 @@ pub struct Options {
     /// scale and of the resolution: `W ≈ 10²–10³` filters noise at the sampling scale, larger
     /// values approach hard constraints.
     pub soft: Option<f64>,
-    /// `--weights`: where cotangent weights and areas are measured. [`Metric::Planar`] (the
-    /// paper) or [`Metric::Surface`] (one more solve with weights from the first result).
-    pub weights: Metric,
+    /// `--iterations K`: iterations of the normal-control fit with operators rebuilt on the 3D
+    /// surface ([`crate::methods::iterated`]); 0 keeps the paper's planar weights. For the
+    /// baselines, K re-solves with 3D weights. Default: [`Options::DEFAULT_ITERATIONS`].
+    pub iterations: usize,
+    /// `--tolerance T`: the iteration stops when no vertex moves more than `T × spacing`.
+    pub tolerance: f64,
+    /// `--normal-prior S`: scale of the iterated method's pull of the propagated normals towards
+    /// the current surface's, as a fraction of the mean patch size (0 disables it).
+    pub normal_prior: f64,
     /// `--energy`: weighting of the normal-control energy (DESIGN §1). Default: area.
     pub energy: Weighting,
     /// `--guide-area`: the area dividing the mean-curvature guide ([CG] eq. 1): the
@@ -55,6 +62,12 @@ pub struct Options {
 impl Options {
     /// Default approximate vertex count.
     pub const DEFAULT_VERTICES: usize = 20_000;
+    /// Default `iterations`.
+    pub const DEFAULT_ITERATIONS: usize = 0;
+    /// Default `tolerance` (relative to the spacing).
+    pub const DEFAULT_TOLERANCE: f64 = 1e-2;
+    /// Default `normal_prior`.
+    pub const DEFAULT_NORMAL_PRIOR: f64 = 0.16;
     /// Largest mesh a run may create (a guard against a mistyped spacing).
     pub const MAX_VERTICES: f64 = 5e7;
 }
@@ -66,7 +79,9 @@ impl Default for Options {
             spacing: None,
             vertices: None,
             soft: None,
-            weights: Metric::Planar,
+            iterations: Options::DEFAULT_ITERATIONS,
+            tolerance: Options::DEFAULT_TOLERANCE,
+            normal_prior: Options::DEFAULT_NORMAL_PRIOR,
             energy: Weighting::Area,
             guide_area: GuideArea::Mass,
             guide_updates: 1,
@@ -102,6 +117,12 @@ pub struct Stats {
     pub segments: usize,
     pub spacing: f64,
     pub method: String,
+    /// Iterations of the 3D-operator loop that ran (0: planar weights only).
+    pub iterations: usize,
+    /// Why the loop stopped: `converged`, `max-iterations`, `degenerate`, `diverging`.
+    pub iteration_stop: Option<String>,
+    /// Largest vertex update of each iteration.
+    pub iteration_updates: Vec<f64>,
     pub timings: Timings,
 }
 
@@ -261,6 +282,15 @@ pub fn surface_with_progress(
     // Solve.
     let mut st = SolveTimings::default();
     let ell = net.bounding_box().diagonal();
+    // The soft weight per curve vertex (see `Options::soft`); the uniform energy carries an
+    // extra 1/area factor, compensated by the mean vertex area.
+    let soft_scale = |w: f64, mean_area: f64| {
+        let base = w * d / (ell * ell * ell);
+        match options.energy {
+            Weighting::Area => base,
+            Weighting::Uniform => base / mean_area,
+        }
+    };
     let run = |metric_positions: &[DVec3], metric: Metric, st: &mut SolveTimings| -> Result<MethodResult> {
         let clock = Instant::now();
         let ops = cotan_operators(&mesh, metric, metric_positions);
@@ -270,13 +300,8 @@ pub fn surface_with_progress(
         }
         match options.method {
             Method::NormalControl => {
-                let soft_weight = options.soft.map(|w| {
-                    let base = w * d / (ell * ell * ell);
-                    match options.energy {
-                        Weighting::Area => base,
-                        Weighting::Uniform => base * ops.mass.len() as f64 / ops.mass.iter().sum::<f64>(),
-                    }
-                });
+                let soft_weight =
+                    options.soft.map(|w| soft_scale(w, ops.mass.iter().sum::<f64>() / ops.mass.len() as f64));
                 normal_control(
                     &mesh,
                     &ops,
@@ -294,8 +319,58 @@ pub fn surface_with_progress(
         }
     };
     let mut result = run(&mesh.positions, Metric::Planar, &mut st)?;
-    if options.weights == Metric::Surface {
-        result = run(&result.positions, Metric::Surface, &mut st)?;
+    let mut iteration_report: (Vec<f64>, Option<Stop>) = (Vec::new(), None);
+    if options.iterations > 0 {
+        match options.method {
+            Method::NormalControl => {
+                let area: f64 = mesh
+                    .faces
+                    .iter()
+                    .map(|f| {
+                        let p = |k: usize| result.positions[f[k] as usize];
+                        0.5 * (p(1) - p(0)).cross(p(2) - p(0)).length()
+                    })
+                    .sum();
+                let params = IterationParams {
+                    max_iterations: options.iterations,
+                    tolerance: options.tolerance,
+                    prior_scale: options.normal_prior,
+                    patch_size: (area / patches.len().max(1) as f64).sqrt(),
+                    spacing: d,
+                    weighting: options.energy,
+                    soft_weight: options.soft.map(|w| soft_scale(w, area / mesh.num_vertices() as f64)),
+                };
+                let (r, report) = iterate(&mesh, result, &params, &mut st)?;
+                result = r;
+                match report.stop {
+                    Stop::Degenerate => warnings.push(Warning(format!(
+                        "the 3D iteration stopped after {} step(s): a triangle degenerated; the last good surface is kept",
+                        report.updates.len()
+                    ))),
+                    Stop::Diverging => warnings.push(Warning(format!(
+                        "the 3D iteration stopped after {} step(s): its updates grew; the last good surface is kept",
+                        report.updates.len()
+                    ))),
+                    Stop::Converged | Stop::MaxIterations => {}
+                }
+                iteration_report = (report.updates, Some(report.stop));
+            }
+            Method::Biharmonic | Method::Triharmonic => {
+                // Re-solves with 3D weights; updates projected on the normals (see iterated).
+                for _ in 0..options.iterations {
+                    let mut next = run(&result.positions, Metric::Surface, &mut st)?;
+                    let nrm = vertex_normals(&mesh.faces, &result.positions);
+                    let mut update = 0.0f64;
+                    for i in mesh.num_curve..next.positions.len() {
+                        let step = nrm[i] * (next.positions[i] - result.positions[i]).dot(nrm[i]);
+                        next.positions[i] = result.positions[i] + step;
+                        update = update.max(step.length());
+                    }
+                    iteration_report.0.push(update);
+                    result = next;
+                }
+            }
+        }
     }
     timings.operators = st.operators;
     timings.factor = st.factor;
@@ -322,6 +397,9 @@ pub fn surface_with_progress(
         segments: g.segments.len(),
         spacing: d,
         method: options.method.name().to_string(),
+        iterations: iteration_report.0.len(),
+        iteration_stop: iteration_report.1.map(|s| s.name().to_string()),
+        iteration_updates: iteration_report.0,
         timings,
     };
     let curve_flags = mesh.curve_flags();

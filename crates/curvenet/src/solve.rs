@@ -10,10 +10,17 @@ use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
 };
 use faer::{Conj, MatMut, Par, Side};
+use std::sync::Arc;
 
 /// A Cholesky factorisation `Q = L Lᵀ` of a sparse symmetric positive definite matrix.
+///
+/// The symbolic analysis (fill-reducing ordering, elimination tree, supernodes) depends only
+/// on the sparsity pattern; [`Cholesky::refactor`] reuses it for another matrix with the same
+/// pattern (the iterated method's systems, whose weights change but not their structure).
 pub struct Cholesky {
-    symbolic: SymbolicCholesky<u32>,
+    symbolic: Arc<SymbolicCholesky<u32>>,
+    /// Column pointers and row indices of the factored matrix (to check pattern reuse).
+    pattern: Arc<(Vec<usize>, Vec<u32>)>,
     values: Vec<f64>,
 }
 
@@ -24,9 +31,7 @@ impl Cholesky {
     /// Errors with [`Error::Numerical`] when `q` is not numerically positive definite (a patch
     /// with no constrained vertex, degenerate triangles) or too large to index.
     pub fn factor(q: &Csc, what: &str) -> Result<Self> {
-        let a = q.to_faer().ok_or_else(|| {
-            Error::Numerical(format!("{what}: the system has too many non-zeros to index with 32 bits"))
-        })?;
+        let a = to_faer(q, what)?;
         let symbolic = factorize_symbolic_cholesky(
             a.symbolic(),
             Side::Lower,
@@ -34,30 +39,20 @@ impl Cholesky {
             CholeskySymbolicParams::default(),
         )
         .map_err(|e| Error::Numerical(format!("{what}: symbolic factorisation failed ({e:?})")))?;
-        let mut values = vec![0.0; symbolic.len_val()];
-        let par = Par::Seq;
-        let mut mem = MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
-            .map_err(|_| Error::Numerical(format!("{what}: out of memory for the factorisation")))?;
-        symbolic
-            .factorize_numeric_llt(
-                &mut values,
-                a.as_ref(),
-                Side::Lower,
-                LltRegularization::default(),
-                par,
-                MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .map_err(|e| {
-                Error::Numerical(format!(
-                    "{what}: the system is not positive definite ({e:?}); a patch may have no constrained vertex, \
-                     or degenerate triangles"
-                ))
-            })?;
-        if values.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Numerical(format!("{what}: the factorisation produced non-finite values")));
+        let symbolic = Arc::new(symbolic);
+        let values = numeric(&symbolic, &a, what)?;
+        Ok(Cholesky { symbolic, pattern: Arc::new((q.col_ptr.clone(), q.row_idx.clone())), values })
+    }
+
+    /// Factorises `q`, reusing this factorisation's symbolic analysis when `q` has the same
+    /// sparsity pattern (only the numeric factorisation is computed), else from scratch.
+    pub fn refactor(&self, q: &Csc, what: &str) -> Result<Self> {
+        if q.col_ptr != self.pattern.0 || q.row_idx != self.pattern.1 {
+            return Cholesky::factor(q, what);
         }
-        Ok(Cholesky { symbolic, values })
+        let a = to_faer(q, what)?;
+        let values = numeric(&self.symbolic, &a, what)?;
+        Ok(Cholesky { symbolic: Arc::clone(&self.symbolic), pattern: Arc::clone(&self.pattern), values })
     }
 
     /// Number of unknowns.
@@ -72,6 +67,39 @@ impl Cholesky {
         let mut mem = MemBuffer::new(llt.solve_in_place_scratch::<f64>(rhs.ncols(), par));
         llt.solve_in_place_with_conj(Conj::No, rhs, par, MemStack::new(&mut mem));
     }
+}
+
+fn to_faer(q: &Csc, what: &str) -> Result<faer::sparse::SparseColMat<u32, f64>> {
+    q.to_faer()
+        .ok_or_else(|| Error::Numerical(format!("{what}: the system has too many non-zeros to index with 32 bits")))
+}
+
+/// The numeric `LLᵀ` factorisation of `a` on the symbolic structure `symbolic`.
+fn numeric(symbolic: &SymbolicCholesky<u32>, a: &faer::sparse::SparseColMat<u32, f64>, what: &str) -> Result<Vec<f64>> {
+    let mut values = vec![0.0; symbolic.len_val()];
+    let par = Par::Seq;
+    let mut mem = MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
+        .map_err(|_| Error::Numerical(format!("{what}: out of memory for the factorisation")))?;
+    symbolic
+        .factorize_numeric_llt(
+            &mut values,
+            a.as_ref(),
+            Side::Lower,
+            LltRegularization::default(),
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .map_err(|e| {
+            Error::Numerical(format!(
+                "{what}: the system is not positive definite ({e:?}); a patch may have no constrained vertex, \
+                 or degenerate triangles"
+            ))
+        })?;
+    if values.iter().any(|v| !v.is_finite()) {
+        return Err(Error::Numerical(format!("{what}: the factorisation produced non-finite values")));
+    }
+    Ok(values)
 }
 
 #[cfg(test)]

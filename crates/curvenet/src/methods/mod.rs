@@ -7,6 +7,7 @@
 //! Every method solves for the free vertices with the curve vertices fixed (hard constraints
 //! eliminated), factoring each distinct system matrix once.
 
+pub mod iterated;
 pub mod normal_control;
 pub mod polyharmonic;
 
