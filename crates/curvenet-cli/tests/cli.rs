@@ -338,9 +338,21 @@ fn demo_reports_where_the_result_went() {
 fn help_documents_every_option() {
     let o = run(&["surface", "--help"]);
     let text = String::from_utf8_lossy(&o.stdout);
-    for flag in
-        ["--method", "--spacing", "--vertices", "--soft", "--weights", "--energy", "--snap", "--stats", "Exit codes"]
-    {
+    for flag in [
+        "--method",
+        "--spacing",
+        "--vertices",
+        "--soft",
+        "--iterations",
+        "--tolerance",
+        "--normal-prior",
+        "--energy",
+        "--guide-area",
+        "--guide-updates",
+        "--snap",
+        "--stats",
+        "Exit codes",
+    ] {
         assert!(text.contains(flag), "{flag} missing from --help");
     }
     let o = run(&["example", "--list"]);
