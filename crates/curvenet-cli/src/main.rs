@@ -4,7 +4,7 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use curvenet::io::{read_network, stage_mesh, write_network, Staged};
 use curvenet::metrics::{distance_to_truth, Truth};
-use curvenet::{examples, Error, GuideArea, Method, Options, Weighting};
+use curvenet::{examples, Error, GuideArea, Method, Options, Patching, Weighting};
 use std::io::{IsTerminal, Write};
 
 /// `println!` that ignores a closed stdout (`curvenet … | head`) instead of panicking.
@@ -64,6 +64,14 @@ enum MethodArg {
 }
 
 #[derive(Clone, Copy, ValueEnum)]
+enum PatchingArg {
+    /// Each patch triangulated in the plane of its mean point and mean normal (the paper).
+    Planar,
+    /// Each patch re-triangulated in a conformal flattening of a first solution, then solved again.
+    Conformal,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
 enum EnergyArg {
     /// Σ A_v ‖ΔV + 2H n*‖²: one factorisation serves propagation and fit.
     Area,
@@ -100,10 +108,16 @@ struct SurfaceArgs {
     /// curves more closely.
     #[arg(long, value_name = "W")]
     soft: Option<f64>,
+    /// Domain each patch is triangulated in.
+    #[arg(long, value_enum, default_value = "conformal")]
+    patching: PatchingArg,
     /// Iterations with cotangent weights rebuilt on the 3D surface (0: the paper's planar weights).
     /// The loop stops earlier when it converges.
     #[arg(long, value_name = "K", default_value_t = Options::DEFAULT_ITERATIONS)]
     iterations: usize,
+    /// Per iteration, repeats of the normal pull and the fit on the same factorisation.
+    #[arg(long, value_name = "N", default_value_t = Options::DEFAULT_INNER_STEPS)]
+    inner_steps: usize,
     /// Convergence threshold of the iterations: largest vertex move, as a fraction of the spacing.
     #[arg(long, value_name = "T", default_value_t = Options::DEFAULT_TOLERANCE)]
     tolerance: f64,
@@ -125,6 +139,10 @@ struct SurfaceArgs {
     /// else 1e-3 × its bounding-box diagonal].
     #[arg(long, value_name = "S")]
     snap: Option<f64>,
+    /// Reproduce the paper exactly: planar patching and weights, unweighted energy, eq. 1 divided
+    /// by the area on V*, no guide update, no iteration (overrides those options).
+    #[arg(long)]
+    paper: bool,
     /// Write run statistics (sizes and per-stage timings) as JSON.
     #[arg(long, value_name = "FILE")]
     stats: Option<PathBuf>,
@@ -170,6 +188,21 @@ fn main() -> ExitCode {
 }
 
 fn options(a: &SurfaceArgs) -> Options {
+    let o = explicit_options(a);
+    if a.paper {
+        return Options {
+            method: o.method,
+            spacing: o.spacing,
+            vertices: o.vertices,
+            soft: o.soft,
+            snap: o.snap,
+            ..Options::paper()
+        };
+    }
+    o
+}
+
+fn explicit_options(a: &SurfaceArgs) -> Options {
     Options {
         method: match a.method {
             MethodArg::NormalControl => Method::NormalControl,
@@ -179,7 +212,12 @@ fn options(a: &SurfaceArgs) -> Options {
         spacing: a.spacing,
         vertices: Some(a.vertices),
         soft: a.soft,
+        patching: match a.patching {
+            PatchingArg::Planar => Patching::Planar,
+            PatchingArg::Conformal => Patching::Conformal,
+        },
         iterations: a.iterations,
+        inner_steps: a.inner_steps,
         tolerance: a.tolerance,
         normal_prior: a.normal_prior,
         energy: match a.energy {

@@ -25,6 +25,7 @@
 //!
 //! [`pipeline`] runs them all: [`surface`] is the one-shot entry point.
 
+pub mod conformal;
 pub mod curves;
 pub mod error;
 pub mod examples;
@@ -45,4 +46,4 @@ pub use error::{Error, Result, Warning};
 pub use methods::{GuideArea, Method, Weighting};
 pub use network::{Curve, Network};
 pub use operators::Metric;
-pub use pipeline::{surface, surface_with_progress, Options, Stats, Surface, Timings};
+pub use pipeline::{surface, surface_with_progress, Options, Patching, Stats, Surface, Timings};

@@ -66,6 +66,29 @@ impl Csc {
         }
     }
 
+    /// Builds an `n × m` matrix from `(row, col, value)` triplets; duplicates are summed.
+    pub fn from_triplets(nrows: usize, ncols: usize, mut triplets: Vec<(u32, u32, f64)>) -> Csc {
+        triplets.sort_unstable_by_key(|t| (t.1, t.0));
+        let mut c = Csc { nrows, ncols, col_ptr: vec![0; ncols + 1], row_idx: Vec::new(), values: Vec::new() };
+        let mut last: Option<(u32, u32)> = None;
+        for (i, j, v) in triplets {
+            if last == Some((i, j)) {
+                if let Some(x) = c.values.last_mut() {
+                    *x += v;
+                }
+                continue;
+            }
+            c.row_idx.push(i);
+            c.values.push(v);
+            c.col_ptr[j as usize + 1] += 1;
+            last = Some((i, j));
+        }
+        for j in 0..ncols {
+            c.col_ptr[j + 1] += c.col_ptr[j];
+        }
+        c
+    }
+
     /// The matrix as a faer sparse matrix (for factorisation).
     pub fn to_faer(&self) -> Option<SparseColMat<u32, f64>> {
         let col_ptr: Vec<u32> = self.col_ptr.iter().map(|&p| u32::try_from(p).ok()).collect::<Option<_>>()?;

@@ -51,6 +51,8 @@ pub struct IterationParams {
     pub weighting: Weighting,
     /// Soft-constraint weight per curve vertex (scaled as in normal-control), `None` for hard.
     pub soft_weight: Option<f64>,
+    /// Repeats of steps 2–5 on the same operators and factorisation (≥ 1).
+    pub inner: usize,
 }
 
 /// Why the iteration stopped.
@@ -147,30 +149,9 @@ pub fn iterate(
         };
         t.factor += clock.elapsed().as_secs_f64();
 
-        // 2. Normals.
-        let clock = Instant::now();
-        let mut rhs = weighted_rhs(&ops.ls, &inv_m, None, &known_normals, nc);
-        for k in nc..n {
-            for c in 0..3 {
-                rhs[(k - nc, c)] += mu * ops.mass[k] * nk[k][c];
-            }
-        }
-        chol.solve_in_place(rhs.as_mut());
-        let mut normals = current.propagated_normals.clone().unwrap_or_else(|| nk.clone());
-        normals[..nc].copy_from_slice(&mesh.curve_normals);
-        scatter(&rhs, 0, nc, &mut normals);
-        for (k, v) in normals.iter_mut().enumerate().skip(nc) {
-            let u = v.normalize_or_zero();
-            *v = if u == DVec3::ZERO || !u.is_finite() { nk[k] } else { u };
-        }
-        t.solve += clock.elapsed().as_secs_f64();
-
-        // 3. Guide on the current surface.
-        let clock = Instant::now();
-        let h = blended_mean_curvature(&mesh.faces, vk, &normals, &ops.mass, &mesh.on_boundary);
-        if let Some(i) = h.iter().position(|x| !x.is_finite()) {
-            return Err(Error::Numerical(format!("iterated guide is not finite at vertex {i}")));
-        }
+        // 2–5, repeated `inner` times on these operators (one factorisation): the normals'
+        // pull and the proximal term relax slowly, and each repeat costs only triangular solves.
+        let first = if params.soft_weight.is_some() { 0 } else { nc };
         let w: Vec<f64> = (0..n)
             .map(|k| match (mesh.on_boundary[k], params.weighting) {
                 (true, _) => 0.0,
@@ -178,36 +159,14 @@ pub fn iterate(
                 (false, Weighting::Uniform) => inv_m[k] * inv_m[k],
             })
             .collect();
-        let mut b = Mat::<f64>::zeros(n, 3);
-        for k in 0..n {
-            let s = -2.0 * ops.mass[k] * h[k];
-            for c in 0..3 {
-                b[(k, c)] = s * normals[k][c];
-            }
-        }
-        // Hard constraints eliminate the curve vertices; soft ones keep every vertex unknown.
-        let first = if params.soft_weight.is_some() { 0 } else { nc };
-        let known = if first == 0 { Mat::<f64>::zeros(n, 3) } else { known_positions.clone() };
-        let mut rhs = weighted_rhs(&ops.ls, &w, Some(&b), &known, first);
-        for k in first..n {
-            let pull = if k < nc { params.soft_weight.unwrap_or(0.0) } else { mu * ops.mass[k] };
-            let target = if k < nc { mesh.positions[k] } else { vk[k] };
-            for c in 0..3 {
-                rhs[(k - first, c)] += pull * target[c];
-            }
-        }
-        t.operators += clock.elapsed().as_secs_f64();
-
-        // 4. Fit: the same matrix on closed surfaces with the area weighting and hard constraints.
+        // Fit matrix: the same one on closed surfaces with the area weighting and hard constraints.
         let fit_own = if closed && params.weighting == Weighting::Area && first == nc {
             None
         } else {
             let clock = Instant::now();
             let mut qf = product(&ops.ls, &w, &ops.ls, first);
-            let mut diag = vec![0.0; n - first];
-            for k in first..n {
-                diag[k - first] = if k < nc { params.soft_weight.unwrap_or(0.0) } else { mu * ops.mass[k] };
-            }
+            let diag: Vec<f64> =
+                (first..n).map(|k| if k < nc { params.soft_weight.unwrap_or(0.0) } else { mu * ops.mass[k] }).collect();
             qf.add_diagonal(&diag);
             t.operators += clock.elapsed().as_secs_f64();
             let clock = Instant::now();
@@ -219,21 +178,73 @@ pub fn iterate(
             Some(c)
         };
         let fit = fit_own.as_ref().unwrap_or(&chol);
-        let clock = Instant::now();
-        fit.solve_in_place(rhs.as_mut());
-        let mut next = vk.clone();
-        scatter(&rhs, 0, first, &mut next);
-        // 5. Normal component of the update only (free vertices; soft curve vertices move freely).
-        let mut update = 0.0f64;
-        for k in 0..n {
-            if k >= nc {
-                let d = nk[k] * (next[k] - vk[k]).dot(nk[k]);
-                next[k] = vk[k] + d;
+        let known = if first == 0 { Mat::<f64>::zeros(n, 3) } else { known_positions.clone() };
+        let mut v = vk.clone();
+        let mut normals = Vec::new();
+        let mut h = Vec::new();
+        for step in 0..params.inner.max(1) {
+            let clock = Instant::now();
+            // 2. Normals, pulled towards the current surface's.
+            let prior = if step == 0 { nk.clone() } else { vertex_normals(&mesh.faces, &v) };
+            let mut rhs = weighted_rhs(&ops.ls, &inv_m, None, &known_normals, nc);
+            for k in nc..n {
+                for c in 0..3 {
+                    rhs[(k - nc, c)] += mu * ops.mass[k] * prior[k][c];
+                }
             }
-            update = update.max(next[k].distance(vk[k]));
+            chol.solve_in_place(rhs.as_mut());
+            normals = mesh.curve_normals.clone();
+            normals.resize(n, DVec3::ZERO);
+            scatter(&rhs, 0, nc, &mut normals);
+            for (k, x) in normals.iter_mut().enumerate().skip(nc) {
+                let u = x.normalize_or_zero();
+                *x = if u == DVec3::ZERO || !u.is_finite() { prior[k] } else { u };
+            }
+            // 3. Guide on the current surface.
+            h = blended_mean_curvature(&mesh.faces, &v, &normals, &ops.mass, &mesh.on_boundary);
+            if let Some(i) = h.iter().position(|x| !x.is_finite()) {
+                return Err(Error::Numerical(format!("iterated guide is not finite at vertex {i}")));
+            }
+            let mut b = Mat::<f64>::zeros(n, 3);
+            for k in 0..n {
+                let s = -2.0 * ops.mass[k] * h[k];
+                for c in 0..3 {
+                    b[(k, c)] = s * normals[k][c];
+                }
+            }
+            // 4. Fit, with the proximal pull (and the soft pull of the curve vertices).
+            let mut rhs = weighted_rhs(&ops.ls, &w, Some(&b), &known, first);
+            for k in first..n {
+                let (pull, target) = if k < nc {
+                    (params.soft_weight.unwrap_or(0.0), mesh.positions[k])
+                } else {
+                    (mu * ops.mass[k], v[k])
+                };
+                for c in 0..3 {
+                    rhs[(k - first, c)] += pull * target[c];
+                }
+            }
+            fit.solve_in_place(rhs.as_mut());
+            let mut next = v.clone();
+            scatter(&rhs, 0, first, &mut next);
+            // 5. Normal component of the move from V_k only (free vertices; soft curve vertices
+            // move freely).
+            let mut moved = 0.0f64;
+            for k in 0..n {
+                if k >= nc {
+                    next[k] = vk[k] + nk[k] * (next[k] - vk[k]).dot(nk[k]);
+                }
+                moved = moved.max(next[k].distance(v[k]));
+            }
+            check_finite(&next, "iterated fit")?;
+            v = next;
+            t.solve += clock.elapsed().as_secs_f64();
+            if moved < params.tolerance * params.spacing {
+                break;
+            }
         }
-        check_finite(&next, "iterated fit")?;
-        t.solve += clock.elapsed().as_secs_f64();
+        let update = v.iter().zip(vk).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+        let next = v;
         if let Some(f) = fit_own {
             fit_shared = Some(f);
         }

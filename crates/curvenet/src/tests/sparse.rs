@@ -29,3 +29,11 @@ fn product_matches_dense() {
         }
     }
 }
+
+#[test]
+fn triplets_sum_duplicates() {
+    let c = Csc::from_triplets(3, 2, vec![(2, 1, 1.0), (0, 0, 2.0), (2, 1, 0.5), (1, 1, -1.0)]);
+    assert_eq!(c.col_ptr, vec![0, 1, 3]);
+    assert_eq!(c.row_idx, vec![0, 1, 2]);
+    assert_eq!(c.values, vec![2.0, -1.0, 1.5]);
+}
