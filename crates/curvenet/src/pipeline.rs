@@ -197,6 +197,7 @@ impl Surface {
             normals: Some(&self.normals),
             mean_curvature: Some(&self.mean_curvature),
             curve_vertex: Some(&self.curve_flags),
+            propagated_normals: self.propagated_normals.as_deref(),
         }
     }
 }

@@ -22,6 +22,9 @@ pub struct MeshData<'a> {
     pub mean_curvature: Option<&'a [f64]>,
     /// `true` for vertices on the input curves, `#V`.
     pub curve_vertex: Option<&'a [bool]>,
+    /// The propagated normals `N*` of normal-control ([CG] Fig. 5 compares them with the
+    /// mesh's), `#V`. PLY only (`pnx pny pnz`).
+    pub propagated_normals: Option<&'a [DVec3]>,
 }
 
 /// A mesh read from a file, with whichever attributes the file carried.
@@ -32,6 +35,7 @@ pub struct MeshFile {
     pub normals: Option<Vec<DVec3>>,
     pub mean_curvature: Option<Vec<f64>>,
     pub curve_vertex: Option<Vec<bool>>,
+    pub propagated_normals: Option<Vec<DVec3>>,
 }
 
 impl MeshFile {
@@ -42,6 +46,7 @@ impl MeshFile {
             normals: self.normals.as_deref(),
             mean_curvature: self.mean_curvature.as_deref(),
             curve_vertex: self.curve_vertex.as_deref(),
+            propagated_normals: self.propagated_normals.as_deref(),
         }
     }
 }
@@ -81,6 +86,7 @@ pub fn stage_mesh(path: &Path, mesh: MeshData<'_>) -> Result<Staged> {
         ("normals", mesh.normals.map(|a| a.len())),
         ("mean_curvature", mesh.mean_curvature.map(|a| a.len())),
         ("curve_vertex", mesh.curve_vertex.map(|a| a.len())),
+        ("propagated_normals", mesh.propagated_normals.map(|a| a.len())),
     ] {
         if let Some(len) = len {
             if len != n {
@@ -144,6 +150,9 @@ fn write_ply(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
     if m.curve_vertex.is_some() {
         writeln!(w, "property uchar curve")?;
     }
+    if m.propagated_normals.is_some() {
+        writeln!(w, "property float pnx\nproperty float pny\nproperty float pnz")?;
+    }
     writeln!(w, "element face {}", m.faces.len())?;
     writeln!(w, "property list uchar int vertex_indices\nend_header")?;
     let mut buf = Vec::with_capacity(64);
@@ -163,6 +172,11 @@ fn write_ply(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
         }
         if let Some(c) = m.curve_vertex {
             buf.push(c[i] as u8);
+        }
+        if let Some(pn) = m.propagated_normals {
+            for c in [pn[i].x, pn[i].y, pn[i].z] {
+                buf.extend_from_slice(&(c as f32).to_le_bytes());
+            }
         }
         w.write_all(&buf)?;
     }
@@ -492,6 +506,9 @@ fn read_ply(bytes: &[u8], source: &str) -> Result<MeshFile> {
         let (inx, iny, inz) = (find("nx"), find("ny"), find("nz"));
         let ih = find("mean_curvature");
         let ic = find("curve");
+        let (ipx, ipy, ipz) = (find("pnx"), find("pny"), find("pnz"));
+        let has_pn = is_vertex && ipx.is_some() && ipy.is_some() && ipz.is_some();
+        let mut pnormals = Vec::new();
         if is_vertex && (ix.is_none() || iy.is_none() || iz.is_none()) {
             return Err(parse_error(source, 1, 1, "PLY vertex element lacks x, y or z"));
         }
@@ -536,12 +553,16 @@ fn read_ply(bytes: &[u8], source: &str) -> Result<MeshFile> {
                 if ic.is_some() {
                     flags.push(g(ic) != 0.0);
                 }
+                if has_pn {
+                    pnormals.push(DVec3::new(g(ipx), g(ipy), g(ipz)));
+                }
             }
         }
         if is_vertex {
             m.normals = has_n.then_some(normals);
             m.mean_curvature = ih.map(|_| curv);
             m.curve_vertex = ic.map(|_| flags);
+            m.propagated_normals = has_pn.then_some(pnormals);
         }
     }
     Ok(m)

@@ -17,7 +17,7 @@ fn closest_points_are_on_the_surfaces() {
 }
 
 #[test]
-fn grid_matches_brute_force() {
+fn bvh_matches_brute_force() {
     // A bumpy open grid surface.
     let k = 20;
     let mut p = Vec::new();
@@ -49,4 +49,36 @@ fn grid_matches_brute_force() {
             .fold(f64::INFINITY, f64::min);
         assert!((md.closest(q).0 - brute).abs() < 1e-12, "{q:?}");
     }
+}
+
+#[test]
+fn ellipsoid_closest_points() {
+    let e = Truth::Ellipsoid { axes: DVec3::new(3.0, 2.0, 1.0) };
+    for p in
+        [DVec3::new(4.0, 0.5, 0.2), DVec3::new(0.3, -0.2, 0.1), DVec3::new(0.0, 0.0, 2.0), DVec3::new(-1.0, 1.5, -0.7)]
+    {
+        let q = e.closest_point(p);
+        // On the surface.
+        assert!(((q / DVec3::new(3.0, 2.0, 1.0)).length_squared() - 1.0).abs() < 1e-9, "{p:?} {q:?}");
+        // The offset is along the normal.
+        if p.distance(q) > 1e-9 {
+            assert!((p - q).normalize().cross(e.normal(p)).length() < 1e-6, "{p:?}");
+        }
+    }
+    // A sphere as an ellipsoid.
+    let s = Truth::Ellipsoid { axes: DVec3::splat(2.0) };
+    assert!((s.distance(DVec3::new(1.0, 2.0, 2.0)) - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn truth_specs() {
+    assert_eq!(Truth::parse("torus:4,2"), Some(Ok(Truth::Torus { major: 4.0, minor: 2.0 })));
+    assert_eq!(
+        Truth::parse("sphere:1,2,3,4"),
+        Some(Ok(Truth::Sphere { center: DVec3::new(1.0, 2.0, 3.0), radius: 4.0 }))
+    );
+    assert_eq!(Truth::parse("plane"), Some(Ok(Truth::Plane { normal: DVec3::Z, offset: 0.0 })));
+    assert!(matches!(Truth::parse("cylinder:-1"), Some(Err(_))));
+    assert!(matches!(Truth::parse("torus:4,x"), Some(Err(_))));
+    assert_eq!(Truth::parse("reference.obj"), None);
 }

@@ -7,6 +7,7 @@ fn tetra() -> MeshFile {
         normals: Some(vec![DVec3::Z, DVec3::X, DVec3::Y, DVec3::Z]),
         mean_curvature: Some(vec![1.0, -0.5, 0.25, 2.0]),
         curve_vertex: Some(vec![true, false, false, true]),
+        propagated_normals: Some(vec![DVec3::X, DVec3::Y, DVec3::Z, DVec3::X]),
     }
 }
 
@@ -25,6 +26,7 @@ fn round_trips() {
             assert_eq!(back.mean_curvature, m.mean_curvature);
             assert_eq!(back.curve_vertex, m.curve_vertex);
             assert_eq!(back.normals, m.normals);
+            assert_eq!(back.propagated_normals, m.propagated_normals);
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();
