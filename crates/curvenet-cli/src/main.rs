@@ -87,6 +87,10 @@ enum MethodArg {
     Biharmonic,
     /// Δ³V = 0 with the curves fixed (positions only).
     Triharmonic,
+    /// [CG] eq. 4: Δ²V = 0 with ΔV = −2Hn prescribed on the curves.
+    Method4,
+    /// The short paper's energy: ‖Δ²V‖² + w1 ‖ΔV + 2H n*‖² (+ soft).
+    ShortPaper,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -129,11 +133,16 @@ struct SurfaceArgs {
     /// Approximate total number of vertices (used when --spacing is not given).
     #[arg(long, value_name = "N", default_value_t = Options::DEFAULT_VERTICES)]
     vertices: usize,
-    /// Soft curve constraints with weight W instead of exact interpolation (normal-control only).
+    /// Soft curve constraints with weight W instead of exact interpolation (normal-control and
+    /// short-paper; for short-paper this is the w0 of the short paper).
     /// W is independent of scale and resolution: 100–1000 smooths sensor noise, larger follows the
     /// curves more closely.
-    #[arg(long, value_name = "W")]
+    #[arg(long, value_name = "W", alias = "w0")]
     soft: Option<f64>,
+    /// Weight of the curvature guide in --method short-paper, dimensionless (ω₁ = W / s⁴, s the
+    /// mean patch size).
+    #[arg(long, value_name = "W", default_value_t = Options::DEFAULT_W1)]
+    w1: f64,
     /// Domain each patch is triangulated in.
     #[arg(long, value_enum, default_value = "conformal")]
     patching: PatchingArg,
@@ -235,10 +244,13 @@ fn explicit_options(a: &SurfaceArgs) -> Options {
             MethodArg::NormalControl => Method::NormalControl,
             MethodArg::Biharmonic => Method::Biharmonic,
             MethodArg::Triharmonic => Method::Triharmonic,
+            MethodArg::Method4 => Method::Method4,
+            MethodArg::ShortPaper => Method::ShortPaper,
         },
         spacing: a.spacing,
         vertices: Some(a.vertices),
         soft: a.soft,
+        w1: a.w1,
         patching: match a.patching {
             PatchingArg::Planar => Patching::Planar,
             PatchingArg::Conformal => Patching::Conformal,

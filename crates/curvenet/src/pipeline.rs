@@ -7,8 +7,10 @@ use crate::geom::DVec3;
 use crate::io::MeshData;
 use crate::mesh::Mesh;
 use crate::methods::iterated::{iterate, IterationParams, Stop};
+use crate::methods::method4::method4;
 use crate::methods::normal_control::{normal_control, NormalControlParams};
 use crate::methods::polyharmonic::polyharmonic;
+use crate::methods::short_paper::{short_paper, ShortPaperParams};
 use crate::methods::{GuideArea, Method, SolveTimings, Weighting};
 use crate::network::Network;
 use crate::operators::{cotan_mean_curvature, cotan_operators, vertex_normals, Metric};
@@ -30,6 +32,9 @@ pub struct Options {
     /// `--vertices N`: approximate total vertex count, used when `spacing` is not given.
     /// Default: [`Options::DEFAULT_VERTICES`].
     pub vertices: Option<usize>,
+    /// `--w1 W`: weight of the curvature guide in the short paper's energy (`--method
+    /// short-paper`), dimensionless: `ω₁ = W / s⁴` with `s` the mean patch size.
+    pub w1: f64,
     /// `--soft W`: soft curve constraints with weight `W` ([CG] §4.5) instead of hard ones
     /// (normal-control only). The penalty is `W · (d / ℓ³) Σ_s ‖v_s − v*_s‖²` with `d` the
     /// spacing and `ℓ` the network's bounding-box diagonal, which makes `W` independent of the
@@ -68,6 +73,8 @@ pub struct Options {
 impl Options {
     /// Default approximate vertex count.
     pub const DEFAULT_VERTICES: usize = 20_000;
+    /// Default `w1`.
+    pub const DEFAULT_W1: f64 = 1e6;
     /// Default `iterations`.
     pub const DEFAULT_ITERATIONS: usize = 2;
     /// Default `inner_steps`.
@@ -103,6 +110,7 @@ impl Default for Options {
             spacing: None,
             vertices: None,
             soft: None,
+            w1: Options::DEFAULT_W1,
             patching: Patching::Conformal,
             iterations: Options::DEFAULT_ITERATIONS,
             inner_steps: Options::DEFAULT_INNER_STEPS,
@@ -267,7 +275,7 @@ pub fn surface_with_progress(
         if !(w.is_finite() && w > 0.0) {
             return Err(Error::Usage(format!("soft-constraint weight {w} is not a positive number")));
         }
-        if options.method != Method::NormalControl {
+        if !matches!(options.method, Method::NormalControl | Method::ShortPaper) {
             return Err(Error::Usage(format!(
                 "--soft applies to normal-control only, not to {}",
                 options.method.name()
@@ -349,6 +357,18 @@ pub fn surface_with_progress(
             }
             Method::Biharmonic => polyharmonic(mesh, &ops, 2, st),
             Method::Triharmonic => polyharmonic(mesh, &ops, 3, st),
+            Method::Method4 => method4(mesh, &ops, st),
+            Method::ShortPaper => {
+                let area: f64 = ops.mass.iter().sum();
+                let patch_count = mesh.face_patch.iter().max().map_or(1, |m| *m as usize + 1);
+                let s = (area / patch_count as f64).sqrt();
+                let mean_area = area / ops.mass.len() as f64;
+                let params = ShortPaperParams {
+                    omega1: options.w1 / s.powi(4),
+                    omega0: options.soft.map(|w| soft_scale(w, mean_area, spacing)),
+                };
+                short_paper(mesh, &ops, &params, st)
+            }
         }
     };
     // Resample and tessellate at spacing `d` with planar projections.
@@ -379,7 +399,14 @@ pub fn surface_with_progress(
             // projections, then each patch re-tessellated in a conformal flattening of it.
             let d0 = 2.0 * d;
             let (coarse_res, coarse) = planar_stage(d0, &mut timings)?;
-            let first = run(&coarse, d0, &coarse.positions, Metric::Planar, &mut st)?;
+            // The first solution only shapes the flattening: normal-control whatever the method.
+            let ops = cotan_operators(&coarse, Metric::Planar, &coarse.positions);
+            let first = normal_control(
+                &coarse,
+                &ops,
+                &NormalControlParams { guide_updates: 1, ..Default::default() },
+                &mut st,
+            )?;
             let coarse = Mesh { positions: first.positions, ..coarse };
             if options.spacing.is_none() {
                 // The flattening has (about) the surface's area, not the projections'.
@@ -452,7 +479,7 @@ pub fn surface_with_progress(
                 iteration_report = (report.updates, Some(report.stop));
             }
             // The baselines keep the weights of their patching's domains, as in [CG] Table 1.
-            Method::Biharmonic | Method::Triharmonic => {}
+            Method::Biharmonic | Method::Triharmonic | Method::Method4 | Method::ShortPaper => {}
         }
     }
     timings.operators = st.operators;

@@ -66,6 +66,51 @@ impl Csc {
         }
     }
 
+    /// The submatrix of rows and columns `first..`, times `scale`.
+    pub fn restrict(&self, first: usize, scale: f64) -> Csc {
+        let m = self.ncols - first;
+        let mut out = Csc { nrows: self.nrows - first, ncols: m, col_ptr: vec![0], ..Default::default() };
+        for j in first..self.ncols {
+            let (rows, vals) = self.col(j);
+            for (&i, &v) in rows.iter().zip(vals) {
+                if i as usize >= first {
+                    out.row_idx.push(i - first as u32);
+                    out.values.push(scale * v);
+                }
+            }
+            out.col_ptr.push(out.row_idx.len());
+        }
+        out
+    }
+
+    /// `self + scale · other` (same shape; the pattern is the union).
+    pub fn add_scaled(&self, other: &Csc, scale: f64) -> Csc {
+        let mut out = Csc { nrows: self.nrows, ncols: self.ncols, col_ptr: vec![0], ..Default::default() };
+        for j in 0..self.ncols {
+            let ((ra, va), (rb, vb)) = (self.col(j), other.col(j));
+            let (mut a, mut b) = (0, 0);
+            while a < ra.len() || b < rb.len() {
+                let (ia, ib) = (ra.get(a).copied().unwrap_or(u32::MAX), rb.get(b).copied().unwrap_or(u32::MAX));
+                if ia == ib {
+                    out.row_idx.push(ia);
+                    out.values.push(va[a] + scale * vb[b]);
+                    a += 1;
+                    b += 1;
+                } else if ia < ib {
+                    out.row_idx.push(ia);
+                    out.values.push(va[a]);
+                    a += 1;
+                } else {
+                    out.row_idx.push(ib);
+                    out.values.push(scale * vb[b]);
+                    b += 1;
+                }
+            }
+            out.col_ptr.push(out.row_idx.len());
+        }
+        out
+    }
+
     /// Builds an `n × m` matrix from `(row, col, value)` triplets; duplicates are summed.
     pub fn from_triplets(nrows: usize, ncols: usize, mut triplets: Vec<(u32, u32, f64)>) -> Csc {
         triplets.sort_unstable_by_key(|t| (t.1, t.0));

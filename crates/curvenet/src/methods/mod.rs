@@ -2,14 +2,19 @@
 //!
 //! - [`normal_control`]: the journal paper's method ([CG] §3.4, eq. 1–3), with signed mean
 //!   curvature, hard or soft constraints ([CG] §4.5).
+//! - [`iterated`]: normal-control iterated with operators rebuilt on the 3D surface.
 //! - [`polyharmonic`]: the biharmonic `Δ²V = 0` and triharmonic `Δ³V = 0` baselines ([CG] §4.3).
+//! - [`method4`]: [CG] §4.2 eq. 4, `Δ²V = 0` with `ΔV = b₁` on the curves.
+//! - [`short_paper`]: the energy of the authors' Eurographics 2016 short paper ([EG]).
 //!
 //! Every method solves for the free vertices with the curve vertices fixed (hard constraints
 //! eliminated), factoring each distinct system matrix once.
 
 pub mod iterated;
+pub mod method4;
 pub mod normal_control;
 pub mod polyharmonic;
+pub mod short_paper;
 
 use crate::geom::DVec3;
 use crate::sparse::Csc;
@@ -26,10 +31,15 @@ pub enum Method {
     Biharmonic,
     /// `Δ³V = 0` with the curve vertices fixed (positions only).
     Triharmonic,
+    /// [CG] §4.2 eq. 4: `Δ²V = 0` with `ΔV = b₁` at the curve vertices, from the normals.
+    Method4,
+    /// [EG]: `‖Δ²V‖² + ω₁ ‖ΔV + 2H n*‖² + ω₀ soft`.
+    ShortPaper,
 }
 
 impl Method {
-    pub const ALL: [Method; 3] = [Method::NormalControl, Method::Biharmonic, Method::Triharmonic];
+    pub const ALL: [Method; 5] =
+        [Method::NormalControl, Method::Biharmonic, Method::Triharmonic, Method::Method4, Method::ShortPaper];
 
     /// The name used on the command line and in files.
     pub fn name(self) -> &'static str {
@@ -37,6 +47,8 @@ impl Method {
             Method::NormalControl => "normal-control",
             Method::Biharmonic => "biharmonic",
             Method::Triharmonic => "triharmonic",
+            Method::Method4 => "method4",
+            Method::ShortPaper => "short-paper",
         }
     }
 

@@ -45,6 +45,57 @@ pub struct NormalControlParams {
     pub soft_weight: Option<f64>,
 }
 
+/// The propagated positions and normals ([CG] §3.4, "Initial vertices and propagated
+/// normals") and the factorisation that computed them.
+pub(crate) struct Propagation {
+    /// `V*`: the biharmonic interpolant of the curve vertices, `#V`.
+    pub v_star: Vec<DVec3>,
+    /// `N*`: the biharmonic interpolant of the curve normals, normalised, `#V`.
+    pub n_star: Vec<DVec3>,
+    /// The factorisation of `(Ls M⁻¹ Ls)_ff` (none without free vertices).
+    pub chol: Option<Cholesky>,
+}
+
+/// `L² V* = 0`, `L² N* = 0` on the free vertices with the curve vertices fixed, in symmetric
+/// form `(Ls M⁻¹ Ls)_ff X_f = −(Ls M⁻¹ Ls)_fc X_c`: one factorisation, six columns.
+pub(crate) fn propagate(mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<Propagation> {
+    let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
+    let mut v_star = mesh.positions.clone();
+    let mut n_star: Vec<DVec3> = mesh.curve_normals.clone();
+    n_star.resize(n, DVec3::ZERO);
+    if n == nc {
+        return Ok(Propagation { v_star, n_star, chol: None });
+    }
+    let clock = Instant::now();
+    let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
+    let q = product(&ops.ls, &inv_m, &ops.ls, nc);
+    let known = known_rows(n, nc, &[&mesh.positions, &mesh.curve_normals]);
+    let rhs = weighted_rhs(&ops.ls, &inv_m, None, &known, nc);
+    t.operators += clock.elapsed().as_secs_f64();
+    let clock = Instant::now();
+    let chol = Cholesky::factor(&q, "propagation system (L² V* = 0)")?;
+    t.factor += clock.elapsed().as_secs_f64();
+    let clock = Instant::now();
+    let mut sol = rhs;
+    chol.solve_in_place(sol.as_mut());
+    scatter(&sol, 0, nc, &mut v_star);
+    scatter(&sol, 3, nc, &mut n_star);
+    t.solve += clock.elapsed().as_secs_f64();
+    for i in nc..n {
+        let u = n_star[i].normalize_or_zero();
+        if u == DVec3::ZERO || !u.is_finite() {
+            return Err(Error::Numerical(format!(
+                "the propagated normal vanishes at vertex {i} near {}: the input normals around it cancel out \
+                 (check that they all point outward)",
+                fmt_point(v_star[i])
+            )));
+        }
+        n_star[i] = u;
+    }
+    check_finite(&v_star, "propagation")?;
+    Ok(Propagation { v_star, n_star, chol: Some(chol) })
+}
+
 /// Runs the method on `mesh` with the operators `ops` (planar or surface metric).
 pub fn normal_control(
     mesh: &Mesh,
@@ -53,42 +104,8 @@ pub fn normal_control(
     t: &mut SolveTimings,
 ) -> Result<MethodResult> {
     let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
-    let mut v_star = mesh.positions.clone();
-    let mut n_star: Vec<DVec3> = mesh.curve_normals.clone();
-    n_star.resize(n, DVec3::ZERO);
-
-    // 1. Propagation.
-    let clock = Instant::now();
+    let Propagation { v_star, n_star, chol: prop } = propagate(mesh, ops, t)?;
     let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
-    let mut prop: Option<Cholesky> = None;
-    if n > nc {
-        let q = product(&ops.ls, &inv_m, &ops.ls, nc);
-        let known = known_rows(n, nc, &[&mesh.positions, &mesh.curve_normals]);
-        let rhs = weighted_rhs(&ops.ls, &inv_m, None, &known, nc);
-        t.operators += clock.elapsed().as_secs_f64();
-        let clock = Instant::now();
-        let chol = Cholesky::factor(&q, "propagation system (L² V* = 0)")?;
-        t.factor += clock.elapsed().as_secs_f64();
-        let clock = Instant::now();
-        let mut sol = rhs;
-        chol.solve_in_place(sol.as_mut());
-        scatter(&sol, 0, nc, &mut v_star);
-        scatter(&sol, 3, nc, &mut n_star);
-        t.solve += clock.elapsed().as_secs_f64();
-        prop = Some(chol);
-        for i in nc..n {
-            let u = n_star[i].normalize_or_zero();
-            if u == DVec3::ZERO || !u.is_finite() {
-                return Err(Error::Numerical(format!(
-                    "the propagated normal vanishes at vertex {i} near {}: the input normals around it cancel out \
-                     (check that they all point outward)",
-                    fmt_point(v_star[i])
-                )));
-            }
-            n_star[i] = u;
-        }
-    }
-    check_finite(&v_star, "propagation")?;
     if n == nc {
         // No free vertex: the mesh is the curves' (patches without interior points).
         let area = mixed_areas(&mesh.faces, &v_star);

@@ -37,3 +37,18 @@ fn triplets_sum_duplicates() {
     assert_eq!(c.row_idx, vec![0, 1, 2]);
     assert_eq!(c.values, vec![2.0, -1.0, 1.5]);
 }
+
+#[test]
+fn restrict_and_add() {
+    let a = from_dense(&[vec![1.0, 2.0, 0.0], vec![0.0, 3.0, 4.0], vec![5.0, 0.0, 6.0]]);
+    let b = from_dense(&[vec![0.0, 1.0, 1.0], vec![1.0, 0.0, 0.0], vec![0.0, 0.0, 1.0]]);
+    let c = a.add_scaled(&b, 2.0);
+    for (i, row) in [[1.0, 4.0, 2.0], [2.0, 3.0, 4.0], [5.0, 0.0, 8.0]].iter().enumerate() {
+        for j in 0..3 {
+            assert_eq!(c.get(i, j), row[j]);
+        }
+    }
+    let r = a.restrict(1, -1.0);
+    assert_eq!((r.nrows, r.ncols), (2, 2));
+    assert_eq!((r.get(0, 0), r.get(0, 1), r.get(1, 0), r.get(1, 1)), (-3.0, -4.0, 0.0, -6.0));
+}
