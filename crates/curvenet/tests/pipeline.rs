@@ -135,10 +135,10 @@ fn normal_control_shapes_tubes() {
     let s = run(&example("cylinder").unwrap(), Method::NormalControl);
     let e = distance_to_truth(&s.mesh.positions, s.mesh.num_curve, &example_truth("cylinder").unwrap());
     assert!(e.max < 1e-3, "{e:?}");
-    // Positions-only baselines cannot tell the three apart.
-    let b1 = mid_radius(&run(&example("barrel").unwrap(), Method::Biharmonic));
-    let b2 = mid_radius(&run(&example("bottleneck").unwrap(), Method::Biharmonic));
-    assert!((b1 - b2).abs() < 1e-9);
+    // Positions-only baselines cannot tell the three apart (on the same mesh: planar patching,
+    // whose spacing does not depend on a first normal-controlled solution).
+    let bi = |name: &str| mid_radius(&surface(&example(name).unwrap(), &planar(Method::Biharmonic)).unwrap());
+    assert!((bi("barrel") - bi("bottleneck")).abs() < 1e-9);
 }
 
 #[test]
@@ -198,9 +198,9 @@ fn a_lone_boundary_loop_bounds_a_flat_disk() {
     for method in Method::ALL {
         let s = run(&net, method);
         let worst = s.mesh.positions.iter().map(|p| (p.z - 0.5).abs()).fold(0.0, f64::max);
-        // The triharmonic matrix has condition number ~ h⁻⁶ (≈ 1e10 here): its round-off
-        // error is larger than the others'.
-        let tol = if method == Method::Triharmonic { 1e-6 } else { 1e-9 };
+        // The triharmonic and short-paper matrices have condition numbers ~ h⁻⁶ and h⁻⁸: their
+        // round-off errors are larger than the others'.
+        let tol = if matches!(method, Method::Triharmonic | Method::ShortPaper) { 1e-6 } else { 1e-9 };
         assert!(worst < tol, "{method:?}: {worst}");
         assert!(s.normals.iter().all(|n| n.z > 0.999));
     }
