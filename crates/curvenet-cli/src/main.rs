@@ -133,11 +133,10 @@ struct SurfaceArgs {
     /// Approximate total number of vertices (used when --spacing is not given).
     #[arg(long, value_name = "N", default_value_t = Options::DEFAULT_VERTICES)]
     vertices: usize,
-    /// Soft curve constraints with weight W instead of exact interpolation (normal-control and
-    /// short-paper; for short-paper this is the w0 of the short paper).
-    /// W is independent of scale and resolution: 100–1000 smooths sensor noise, larger follows the
-    /// curves more closely.
-    #[arg(long, value_name = "W", alias = "w0")]
+    /// Soft curve constraints: the surface may leave the curves to smooth out deviations shorter
+    /// than about S input sample spacings (S ≈ 1–3 for sensor noise). normal-control and
+    /// short-paper (where it is the short paper's w0).
+    #[arg(long, value_name = "S", alias = "w0")]
     soft: Option<f64>,
     /// Weight of the curvature guide in --method short-paper, dimensionless (ω₁ = W / s⁴, s the
     /// mean patch size).
@@ -197,6 +196,13 @@ struct ExampleArgs {
     /// List the bundled examples.
     #[arg(long)]
     list: bool,
+    /// Add sensor-like noise: Gaussian, σ = F × the sample spacing on positions, σ = F on the
+    /// unit normals ([CG] §4.5).
+    #[arg(long, value_name = "F")]
+    noise: Option<f64>,
+    /// Seed of the noise.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
 }
 
 #[derive(Args)]
@@ -352,8 +358,14 @@ fn run_example(a: &ExampleArgs) -> Result<(), Error> {
         let names: Vec<&str> = examples::EXAMPLES.iter().map(|e| e.0).collect();
         Error::Usage(format!("unknown example \"{name}\"; the examples are: {}", names.join(", ")))
     })?;
+    let net = match a.noise {
+        Some(f) if f.is_finite() && f >= 0.0 => net.perturbed(f, a.seed),
+        Some(f) => return Err(Error::Usage(format!("--noise {f} is not a non-negative number"))),
+        None => net,
+    };
     write_network(out, &net)?;
-    out!("{}: example \"{name}\", {} curves, {} samples", out.display(), net.curves.len(), net.num_samples());
+    let noise = a.noise.map(|f| format!(", noise {f} (seed {})", a.seed)).unwrap_or_default();
+    out!("{}: example \"{name}\", {} curves, {} samples{noise}", out.display(), net.curves.len(), net.num_samples());
     Ok(())
 }
 

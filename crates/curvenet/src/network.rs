@@ -44,6 +44,8 @@ pub fn curve_label(curves: &[Curve], index: usize) -> String {
 impl Network {
     /// Default snapping tolerance relative to the bounding-box diagonal.
     pub const DEFAULT_SNAP_RELATIVE: f64 = 1e-3;
+    /// Default snapping tolerance relative to the mean sample spacing.
+    pub const DEFAULT_SNAP_SPACING: f64 = 0.1;
     /// Samples closer than this (relative to the bounding-box diagonal) are duplicates.
     pub const DUPLICATE_RELATIVE: f64 = 1e-9;
 
@@ -52,14 +54,64 @@ impl Network {
         Aabb::of(self.curves.iter().flat_map(|c| c.points.iter().copied()))
     }
 
-    /// The snapping tolerance in effect: `snap` or the relative default.
+    /// The snapping tolerance in effect: `snap`, or the larger of
+    /// [`Network::DEFAULT_SNAP_RELATIVE`] × the bounding-box diagonal and
+    /// [`Network::DEFAULT_SNAP_SPACING`] × the mean sample spacing (sparsely sampled or noisy
+    /// curves cross between samples at a distance that grows with the spacing).
     pub fn snap_tolerance(&self) -> f64 {
-        self.snap.unwrap_or_else(|| Self::DEFAULT_SNAP_RELATIVE * self.bounding_box().diagonal())
+        self.snap.unwrap_or_else(|| {
+            (Self::DEFAULT_SNAP_RELATIVE * self.bounding_box().diagonal())
+                .max(Self::DEFAULT_SNAP_SPACING * self.mean_sample_spacing())
+        })
     }
 
     /// Total number of samples.
     pub fn num_samples(&self) -> usize {
         self.curves.iter().map(|c| c.points.len()).sum()
+    }
+
+    /// Mean distance between consecutive samples over all curves.
+    pub fn mean_sample_spacing(&self) -> f64 {
+        let (mut sum, mut count) = (0.0, 0usize);
+        for c in &self.curves {
+            let n = c.points.len();
+            let m = if c.closed { n } else { n.saturating_sub(1) };
+            for i in 0..m {
+                sum += c.points[i].distance(c.points[(i + 1) % n]);
+                count += 1;
+            }
+        }
+        if count > 0 {
+            sum / count as f64
+        } else {
+            0.0
+        }
+    }
+
+    /// A copy with sensor-like noise ([CG] §4.5, Fig. 7): Gaussian noise of standard deviation
+    /// `fraction × spacing` on the positions (`spacing` the mean sample spacing) and a
+    /// Gaussian perturbation of standard deviation `fraction` on the unit normals, which are then
+    /// re-normalised. Samples that coincide (crossings sampled by both curves) receive the same
+    /// perturbation, so curves that met still meet. Deterministic for a given `seed`.
+    pub fn perturbed(&self, fraction: f64, seed: u64) -> Network {
+        let sigma = fraction * self.mean_sample_spacing();
+        let mut rng = Rng::new(seed);
+        let mut shared: std::collections::HashMap<[u64; 3], (DVec3, DVec3)> = std::collections::HashMap::new();
+        let mut out = self.clone();
+        for c in &mut out.curves {
+            for (p, n) in c.points.iter_mut().zip(c.normals.iter_mut()) {
+                // Key by position rounded to 1e-9 of the spacing, so coincident samples share it.
+                // (+ 0.0 turns −0 into +0, so that both round to the same key.)
+                let q = (*p / (1e-9 * sigma.max(f64::MIN_POSITIVE))).round() + DVec3::ZERO;
+                let key = [q.x.to_bits(), q.y.to_bits(), q.z.to_bits()];
+                let (dp, dn) =
+                    *shared.entry(key).or_insert_with(|| (rng.gaussian3() * sigma, rng.gaussian3() * fraction));
+                *p += dp;
+                let m = n.normalize_or_zero() + dn;
+                *n = if m.length() > 1e-6 { m.normalize() } else { *n };
+            }
+        }
+        out
     }
 
     /// Checks the network and returns a cleaned copy: unit normals, consecutive duplicate
@@ -175,6 +227,38 @@ impl Network {
             curves.push(Curve { name: c.name.clone(), points, normals, closed: c.closed, boundary: c.boundary });
         }
         Ok((Network { curves, snap: self.snap }, warnings))
+    }
+}
+
+/// A small deterministic generator (SplitMix64) with Gaussian samples (Box–Muller), so that
+/// noisy test networks are reproducible without a dependency.
+pub(crate) struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed ^ 0x9E37_79B9_7F4A_7C15)
+    }
+
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in (0, 1).
+    pub fn uniform(&mut self) -> f64 {
+        ((self.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+
+    pub fn gaussian(&mut self) -> f64 {
+        let (u, v) = (self.uniform(), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    }
+
+    pub fn gaussian3(&mut self) -> DVec3 {
+        DVec3::new(self.gaussian(), self.gaussian(), self.gaussian())
     }
 }
 

@@ -35,11 +35,13 @@ pub struct Options {
     /// `--w1 W`: weight of the curvature guide in the short paper's energy (`--method
     /// short-paper`), dimensionless: `ω₁ = W / s⁴` with `s` the mean patch size.
     pub w1: f64,
-    /// `--soft W`: soft curve constraints with weight `W` ([CG] §4.5) instead of hard ones
-    /// (normal-control only). The penalty is `W · (d / ℓ³) Σ_s ‖v_s − v*_s‖²` with `d` the
-    /// spacing and `ℓ` the network's bounding-box diagonal, which makes `W` independent of the
-    /// scale and of the resolution: `W ≈ 10²–10³` filters noise at the sampling scale, larger
-    /// values approach hard constraints.
+    /// `--soft S`: soft curve constraints ([CG] §4.5) instead of hard ones: the surface may
+    /// leave the curves to smooth out deviations shorter than about `S` input sample spacings
+    /// (`S ≈ 1–3` for sensor noise; 0 would be hard). With the iterations, the curve normals are
+    /// soft too. The penalty is `ω Σ_s ‖v_s − v*_s‖²` with `ω = d / λ³`, `λ = S h`, `d` the
+    /// spacing and `h` the mean input sample spacing: a deviation of wavelength `λ` costs as
+    /// much in the penalty as in the fit energy, independently of scale and resolution.
+    /// normal-control and short-paper only.
     pub soft: Option<f64>,
     /// `--patching`: the domain each patch is triangulated in: its planar projection
     /// ([CG] §3.3) or a conformal flattening of a first solution (then solved again).
@@ -322,11 +324,11 @@ pub fn surface_with_progress(
     timings.resample = spline_time + clock.elapsed().as_secs_f64();
 
     let mut st = SolveTimings::default();
-    let ell = net.bounding_box().diagonal();
+    let input_spacing = net.mean_sample_spacing();
     // The soft weight per curve vertex (see `Options::soft`); the uniform energy carries an
     // extra 1/area factor, compensated by the mean vertex area.
-    let soft_scale = |w: f64, mean_area: f64, spacing: f64| {
-        let base = w * spacing / (ell * ell * ell);
+    let soft_scale = |s: f64, mean_area: f64, spacing: f64| {
+        let base = spacing / (s * input_spacing).powi(3);
         match options.energy {
             Weighting::Area => base,
             Weighting::Uniform => base / mean_area,

@@ -121,7 +121,8 @@ pub fn iterate(
     }
     let mu = if params.prior_scale > 0.0 { (params.prior_scale * params.patch_size).powi(-4) } else { 0.0 };
     let closed = !mesh.on_boundary.iter().any(|&b| b);
-    let known_normals = known_rows(n, nc, &[&mesh.curve_normals]);
+    let soft = params.soft_weight.is_some();
+    let known_normals = known_rows(n, if soft { 0 } else { nc }, &[&mesh.curve_normals]);
     let known_positions = known_rows(n, nc, &[&mesh.positions]);
     let mut shared: Option<Cholesky> = None;
     let mut fit_shared: Option<Cholesky> = None;
@@ -135,12 +136,17 @@ pub fn iterate(
         let ops = cotan_operators(mesh, Metric::Surface, vk);
         let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
         let nk = vertex_normals(&mesh.faces, vk);
-        let prox: Vec<f64> = (nc..n).map(|k| mu * ops.mass[k]).collect();
+        // Hard constraints eliminate the curve vertices; soft ones keep every vertex unknown,
+        // normals included: the curve normals are then pulled towards the input ones only,
+        // with the same weight as the positions (sensor normals are noisy too).
+        let first = if soft { 0 } else { nc };
+        let pull = |k: usize| if k < nc { params.soft_weight.unwrap_or(0.0) } else { mu * ops.mass[k] };
+        let prox: Vec<f64> = (first..n).map(pull).collect();
         let with_prox = |mut q: Csc| {
             q.add_diagonal(&prox);
             q
         };
-        let q = with_prox(product(&ops.ls, &inv_m, &ops.ls, nc));
+        let q = with_prox(product(&ops.ls, &inv_m, &ops.ls, first));
         t.operators += clock.elapsed().as_secs_f64();
         let clock = Instant::now();
         let chol = match &shared {
@@ -151,7 +157,6 @@ pub fn iterate(
 
         // 2–5, repeated `inner` times on these operators (one factorisation): the normals'
         // pull and the proximal term relax slowly, and each repeat costs only triangular solves.
-        let first = if params.soft_weight.is_some() { 0 } else { nc };
         let w: Vec<f64> = (0..n)
             .map(|k| match (mesh.on_boundary[k], params.weighting) {
                 (true, _) => 0.0,
@@ -159,15 +164,12 @@ pub fn iterate(
                 (false, Weighting::Uniform) => inv_m[k] * inv_m[k],
             })
             .collect();
-        // Fit matrix: the same one on closed surfaces with the area weighting and hard constraints.
-        let fit_own = if closed && params.weighting == Weighting::Area && first == nc {
+        // Fit matrix: the normals' one on closed surfaces with the area weighting.
+        let fit_own = if closed && params.weighting == Weighting::Area {
             None
         } else {
             let clock = Instant::now();
-            let mut qf = product(&ops.ls, &w, &ops.ls, first);
-            let diag: Vec<f64> =
-                (first..n).map(|k| if k < nc { params.soft_weight.unwrap_or(0.0) } else { mu * ops.mass[k] }).collect();
-            qf.add_diagonal(&diag);
+            let qf = with_prox(product(&ops.ls, &w, &ops.ls, first));
             t.operators += clock.elapsed().as_secs_f64();
             let clock = Instant::now();
             let c = match &fit_shared {
@@ -186,17 +188,18 @@ pub fn iterate(
             let clock = Instant::now();
             // 2. Normals, pulled towards the current surface's.
             let prior = if step == 0 { nk.clone() } else { vertex_normals(&mesh.faces, &v) };
-            let mut rhs = weighted_rhs(&ops.ls, &inv_m, None, &known_normals, nc);
-            for k in nc..n {
+            let mut rhs = weighted_rhs(&ops.ls, &inv_m, None, &known_normals, first);
+            for k in first..n {
+                let target = if k < nc { mesh.curve_normals[k] } else { prior[k] };
                 for c in 0..3 {
-                    rhs[(k - nc, c)] += mu * ops.mass[k] * prior[k][c];
+                    rhs[(k - first, c)] += pull(k) * target[c];
                 }
             }
             chol.solve_in_place(rhs.as_mut());
             normals = mesh.curve_normals.clone();
             normals.resize(n, DVec3::ZERO);
-            scatter(&rhs, 0, nc, &mut normals);
-            for (k, x) in normals.iter_mut().enumerate().skip(nc) {
+            scatter(&rhs, 0, first, &mut normals);
+            for (k, x) in normals.iter_mut().enumerate().skip(first) {
                 let u = x.normalize_or_zero();
                 *x = if u == DVec3::ZERO || !u.is_finite() { prior[k] } else { u };
             }
@@ -215,13 +218,9 @@ pub fn iterate(
             // 4. Fit, with the proximal pull (and the soft pull of the curve vertices).
             let mut rhs = weighted_rhs(&ops.ls, &w, Some(&b), &known, first);
             for k in first..n {
-                let (pull, target) = if k < nc {
-                    (params.soft_weight.unwrap_or(0.0), mesh.positions[k])
-                } else {
-                    (mu * ops.mass[k], v[k])
-                };
+                let target = if k < nc { mesh.positions[k] } else { v[k] };
                 for c in 0..3 {
-                    rhs[(k - first, c)] += pull * target[c];
+                    rhs[(k - first, c)] += pull(k) * target[c];
                 }
             }
             fit.solve_in_place(rhs.as_mut());

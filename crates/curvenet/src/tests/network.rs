@@ -45,3 +45,24 @@ fn errors_name_curve_and_sample() {
     let e = Network { curves: vec![], snap: None }.validated().unwrap_err();
     assert!(e.to_string().contains("no curves"), "{e}");
 }
+
+#[test]
+fn noise_is_seeded_and_keeps_crossings() {
+    let net = crate::examples::example("sphere").unwrap();
+    let a = net.perturbed(0.05, 7);
+    let b = net.perturbed(0.05, 7);
+    assert_eq!(a, b);
+    assert_ne!(a, net.perturbed(0.05, 8));
+    // Standard deviation of the position noise ≈ 5% of the spacing.
+    let d: Vec<f64> = net
+        .curves
+        .iter()
+        .zip(&a.curves)
+        .flat_map(|(c, n)| c.points.iter().zip(&n.points).map(|(p, q)| p.distance(*q)))
+        .collect();
+    let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64 / 3.0).sqrt();
+    let want = 0.05 * net.mean_sample_spacing();
+    assert!((rms / want - 1.0).abs() < 0.15, "{rms} {want}");
+    // The crossing samples of the equator and a meridian moved together.
+    assert!(a.curves[0].points[32].distance(a.curves[1].points[0]) < 1e-12);
+}

@@ -234,7 +234,8 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
             if face[i + 1..].iter().any(|k| k.segment == h.segment) {
                 return Err(Error::Topology(format!(
                     "{} has the same patch on both sides: a curve that dangles into a patch or cuts it open \
-                     cannot be surfaced; remove it or connect both of its ends to other curves",
+                     cannot be surfaced; remove it or connect both of its ends to other curves (if it crosses \
+                     another curve without meeting it at a node, raise the snapping tolerance)",
                     g.describe_segment(h.segment)
                 )));
             }
