@@ -1,0 +1,77 @@
+//! `curvenet surface`: read a network, surface it, write the mesh (and statistics).
+
+use crate::options::{options, SolveArgs};
+use crate::Progress;
+use clap::Args;
+use curvenet::io::{read_network, stage_mesh, Staged};
+use curvenet::Error;
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Args)]
+pub struct SurfaceArgs {
+    /// Input curve network (.json, .obj, .net).
+    input: PathBuf,
+    /// Output mesh (.ply, .obj, .off). Written only if the whole run succeeds.
+    #[arg(short, long)]
+    output: PathBuf,
+    #[command(flatten)]
+    solve: SolveArgs,
+    /// Write run statistics (sizes and per-stage timings) as JSON.
+    #[arg(long, value_name = "FILE")]
+    stats: Option<PathBuf>,
+    /// Print nothing but errors and warnings.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
+    let start = Instant::now();
+    let progress = Progress::new(a.quiet);
+    // Check the output names before any work, so that a typo does not cost a whole run.
+    curvenet::io::check_mesh_path(&a.output)?;
+    let clock = Instant::now();
+    let network = read_network(&a.input)?;
+    let read = clock.elapsed().as_secs_f64();
+    progress.stage("read", read, &format!("{} curves, {} samples", network.curves.len(), network.num_samples()));
+    let opts = options(&a.solve);
+    let mut surface = curvenet::surface_with_progress(&network, &opts, &mut |s, t, d| progress.stage(s, t, d))?;
+    for w in &surface.warnings {
+        eprintln!("warning: {w}");
+    }
+    let clock = Instant::now();
+    let staged_mesh = stage_mesh(&a.output, surface.mesh_data())?;
+    let write = clock.elapsed().as_secs_f64();
+    let t = &mut surface.stats.timings;
+    t.read = read;
+    t.write = write;
+    t.total = start.elapsed().as_secs_f64();
+    let staged_stats = match &a.stats {
+        Some(path) => {
+            let json = serde_json::to_string_pretty(&surface.stats).map_err(|e| Error::Usage(e.to_string()))?;
+            Some(Staged::write(path, |w| w.write_all(json.as_bytes()))?)
+        }
+        None => None,
+    };
+    staged_mesh.commit()?;
+    if let Some(s) = staged_stats {
+        s.commit()?;
+    }
+    progress.stage("write", write, &a.output.display().to_string());
+    if !a.quiet {
+        let s = &surface.stats;
+        out!(
+            "{}: {} vertices ({} on curves), {} faces, {} patches, spacing {:.4e}, {} in {:.3} s",
+            a.output.display(),
+            s.vertices,
+            s.curve_vertices,
+            s.faces,
+            s.cycles,
+            s.spacing,
+            s.method,
+            s.timings.total
+        );
+    }
+    Ok(())
+}
