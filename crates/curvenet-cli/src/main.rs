@@ -12,6 +12,7 @@ mod demo;
 mod eval;
 mod example;
 mod options;
+mod study;
 mod surface;
 
 use clap::{Parser, Subcommand};
@@ -56,6 +57,8 @@ enum Command {
     /// Measure a mesh against a ground truth: distances, normal angles, N* deviation ([CG] §4.3).
     #[command(after_help = eval::EVAL_HELP)]
     Eval(eval::EvalArgs),
+    /// Run the paper's experiments: convergence under refinement, the accuracy report.
+    Study(study::StudyArgs),
 }
 
 fn main() -> ExitCode {
@@ -65,6 +68,7 @@ fn main() -> ExitCode {
         Command::Example(a) => example::run(&a),
         Command::Demo(a) => demo::run(&a),
         Command::Eval(a) => eval::run(&a),
+        Command::Study(a) => study::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
