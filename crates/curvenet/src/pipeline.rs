@@ -14,7 +14,7 @@ use crate::methods::short_paper::{short_paper, ShortPaperParams};
 use crate::methods::{GuideArea, Method, SolveTimings, Weighting};
 use crate::network::Network;
 use crate::operators::{cotan_mean_curvature, cotan_operators, vertex_normals, Metric};
-use crate::tessellate::{tessellate, tessellate_conformal, VERTICES_PER_AREA};
+use crate::tessellate::{flatten_patches, tessellate, tessellate_conformal, VERTICES_PER_AREA};
 use crate::topology::cycles::half_edge_samples;
 use crate::topology::{find_nodes, find_patches, Graph, Patch};
 use rayon::prelude::*;
@@ -219,9 +219,13 @@ pub fn surface(network: &Network, options: &Options) -> Result<Surface> {
 
 /// Sizes that predict the vertex count: free vertices ≈ `c A / d²` over the patches' projected
 /// area `A`, curve vertices ≈ `ℓ / d` over the segments' length `ℓ`.
+#[derive(Clone)]
 struct SizeModel {
+    /// `c A`: the vertices-per-area constant times the domains' total area.
     area: f64,
     length: f64,
+    /// Area of each patch's domain (projection or strip).
+    patch_areas: Vec<f64>,
 }
 
 impl SizeModel {
@@ -230,7 +234,7 @@ impl SizeModel {
         let samples = |hs: &[crate::topology::HalfEdge]| -> Vec<DVec3> {
             hs.iter().flat_map(|&h| half_edge_samples(g, h)).map(|x| x.0).collect()
         };
-        let area: f64 = patches
+        let patch_areas: Vec<f64> = patches
             .iter()
             .map(|p| match p {
                 Patch::Disk(hs) => crate::geom::polygon_vector_area(&samples(hs)).length(),
@@ -241,8 +245,8 @@ impl SizeModel {
                     0.5 * (len(&la) + len(&lb)) * c(&la).distance(c(&lb))
                 }
             })
-            .sum();
-        SizeModel { area: VERTICES_PER_AREA * area, length }
+            .collect();
+        SizeModel { area: VERTICES_PER_AREA * patch_areas.iter().sum::<f64>(), length, patch_areas }
     }
 
     fn vertices(&self, d: f64) -> f64 {
@@ -410,24 +414,21 @@ pub fn surface_with_progress(
                 &mut st,
             )?;
             let coarse = Mesh { positions: first.positions, ..coarse };
+            let clock = Instant::now();
+            let flat = flatten_patches(&patches, &coarse_res, &coarse);
+            timings.tessellate += clock.elapsed().as_secs_f64();
             if options.spacing.is_none() {
-                // The flattening has (about) the surface's area, not the projections'.
-                let area: f64 = coarse
-                    .faces
-                    .iter()
-                    .map(|f| {
-                        let p = |k: usize| coarse.positions[f[k] as usize];
-                        0.5 * (p(1) - p(0)).cross(p(2) - p(0)).length()
-                    })
-                    .sum();
-                d = SizeModel { area: VERTICES_PER_AREA * area, length: size.length }.spacing(target);
+                // The vertex count follows the flattened domains' area, not the projections'.
+                let total: f64 =
+                    flat.iter().zip(&size.patch_areas).map(|(f, a)| f.as_ref().map_or(*a, |f| f.area)).sum();
+                d = SizeModel { area: VERTICES_PER_AREA * total, ..size.clone() }.spacing(target);
             }
             let clock = Instant::now();
             let res = resample_network(&g, &splines, d);
             timings.resample += clock.elapsed().as_secs_f64();
             progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
             let clock = Instant::now();
-            let (mesh, kept) = tessellate_conformal(&g, &res, &patches, d, &coarse_res, &coarse)?;
+            let (mesh, kept) = tessellate_conformal(&g, &res, &patches, d, &coarse_res, &flat)?;
             timings.tessellate += clock.elapsed().as_secs_f64();
             for p in kept {
                 warnings.push(Warning(format!(

@@ -298,53 +298,34 @@ pub fn tessellate(g: &Graph, res: &Resampled, patches: &[Patch], d: f64) -> Resu
     merge(res, parts)
 }
 
-/// Re-tessellates every disk patch in a conformal flattening ([`crate::conformal::lscm`]) of a
-/// first solution `coarse` (a solved mesh of the same patches over the curve vertices
-/// `coarse_res`, usually at a coarser spacing), at spacing `d` with the curve vertices of
-/// `res`. The border of the flattening is scaled to its 3D length; the fine curve vertices
-/// are placed on it by arc length. A tube keeps its strip; a patch whose flattening folds over
-/// keeps its planar projection. Returns the mesh and the indices of the patches kept planar.
-pub fn tessellate_conformal(
-    g: &Graph,
-    res: &Resampled,
-    patches: &[Patch],
-    d: f64,
-    coarse_res: &Resampled,
-    coarse: &Mesh,
-) -> Result<(Mesh, Vec<usize>)> {
+/// The conformal flattening of one disk patch of a coarse first solution.
+#[derive(Clone, Debug)]
+pub struct PatchFlattening {
+    /// Coarse vertex id → flattened position, scaled so that the border keeps its 3D length.
+    uv: std::collections::HashMap<u32, DVec2>,
+    /// Area enclosed by the flattened border.
+    pub area: f64,
+}
+
+/// Flattens every disk patch of `coarse` (a solved mesh over the curve vertices `coarse_res`)
+/// by LSCM ([`crate::conformal::lscm`]). `None` for tubes and for patches whose flattening
+/// fails or folds over (they keep their planar projection).
+pub fn flatten_patches(patches: &[Patch], coarse_res: &Resampled, coarse: &Mesh) -> Vec<Option<PatchFlattening>> {
     let mut faces_of: Vec<Vec<[u32; 3]>> = vec![Vec::new(); patches.len()];
     for (f, &p) in coarse.faces.iter().zip(&coarse.face_patch) {
         faces_of[p as usize].push(*f);
     }
-    let parts: Vec<(Result<PatchMesh>, bool)> = patches
+    patches
         .par_iter()
         .enumerate()
         .map(|(i, p)| match p {
-            Patch::Disk(hs) => match conformal_disk(g, res, hs, d, i, coarse_res, coarse, &faces_of[i]) {
-                Some(part) => (part, false),
-                None => (tessellate_disk(g, res, hs, d, i), true),
-            },
-            Patch::Tube(loops) => (tessellate_tube(g, res, loops, d, i), false),
+            Patch::Disk(hs) => flatten_disk(hs, coarse_res, coarse, &faces_of[i]),
+            Patch::Tube(_) => None,
         })
-        .collect();
-    let kept: Vec<usize> = parts.iter().enumerate().filter(|(_, p)| p.1).map(|(i, _)| i).collect();
-    Ok((merge(res, parts.into_iter().map(|p| p.0).collect())?, kept))
+        .collect()
 }
 
-/// A disk patch triangulated in the LSCM flattening of its faces in `coarse`; `None` when the
-/// flattening fails or folds over.
-#[allow(clippy::too_many_arguments)]
-fn conformal_disk(
-    g: &Graph,
-    res: &Resampled,
-    hs: &[HalfEdge],
-    d: f64,
-    index: usize,
-    coarse_res: &Resampled,
-    coarse: &Mesh,
-    faces: &[[u32; 3]],
-) -> Option<Result<PatchMesh>> {
-    let what = || format!("patch {index} (bounded by {})", describe_patch(g, hs));
+fn flatten_disk(hs: &[HalfEdge], coarse_res: &Resampled, coarse: &Mesh, faces: &[[u32; 3]]) -> Option<PatchFlattening> {
     // Local numbering of the coarse patch's vertices.
     let mut local = std::collections::HashMap::new();
     let mut global = Vec::new();
@@ -360,11 +341,10 @@ fn conformal_disk(
         })
         .collect();
     let p3: Vec<DVec3> = global.iter().map(|&v| coarse.positions[v as usize]).collect();
-    let coarse_ids = loop_vertices(coarse_res, hs);
-    let first = coarse_ids[0];
+    let border = loop_vertices(coarse_res, hs);
+    let first = border[0];
     let pos = |v: u32| coarse.positions[v as usize];
-    let far =
-        *coarse_ids.iter().max_by(|a, b| pos(**a).distance(pos(first)).total_cmp(&pos(**b).distance(pos(first))))?;
+    let far = *border.iter().max_by(|a, b| pos(**a).distance(pos(first)).total_cmp(&pos(**b).distance(pos(first))))?;
     let uv =
         crate::conformal::lscm(&p3, &local_faces, [*local.get(&first)? as usize, *local.get(&far)? as usize]).ok()?;
     if local_faces.iter().any(|f| {
@@ -373,10 +353,59 @@ fn conformal_disk(
     }) {
         return None;
     }
-    let uv_of = |v: u32| local.get(&v).map(|&l| uv[l as usize]);
-    // The fine curve vertices on the flattened border, by arc length along each segment (both
-    // resamplings are uniform in arc length).
-    let mut border = Vec::new();
+    let ring: Vec<DVec2> = border.iter().map(|v| local.get(v).map(|&l| uv[l as usize])).collect::<Option<_>>()?;
+    let m = border.len();
+    let len3: f64 = (0..m).map(|k| pos(border[k]).distance(pos(border[(k + 1) % m]))).sum();
+    let len2: f64 = (0..m).map(|k| ring[k].distance(ring[(k + 1) % m])).sum();
+    let scale = len3 / len2;
+    let area = polygon_signed_area(&ring) * scale * scale;
+    let uv = global.iter().zip(&uv).map(|(&g, q)| (g, *q * scale)).collect();
+    Some(PatchFlattening { uv, area })
+}
+
+/// Tessellates every patch at spacing `d` over the curve vertices `res`: disk patches with a
+/// flattening ([`flatten_patches`]) in it, the others as [`tessellate`] does. The fine curve
+/// vertices are placed on the flattened border by arc length along each segment (both
+/// resamplings are uniform in arc length). Returns the mesh and the indices of the disk patches
+/// kept in their planar projection.
+pub fn tessellate_conformal(
+    g: &Graph,
+    res: &Resampled,
+    patches: &[Patch],
+    d: f64,
+    coarse_res: &Resampled,
+    flat: &[Option<PatchFlattening>],
+) -> Result<(Mesh, Vec<usize>)> {
+    let parts: Vec<(Result<PatchMesh>, bool)> = patches
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| match (p, &flat[i]) {
+            (Patch::Disk(hs), Some(f)) => match conformal_disk(g, res, hs, d, i, coarse_res, f) {
+                Some(part) => (part, false),
+                None => (tessellate_disk(g, res, hs, d, i), true),
+            },
+            (Patch::Disk(hs), None) => (tessellate_disk(g, res, hs, d, i), true),
+            (Patch::Tube(loops), _) => (tessellate_tube(g, res, loops, d, i), false),
+        })
+        .collect();
+    let kept: Vec<usize> = parts.iter().enumerate().filter(|(_, p)| p.1).map(|(i, _)| i).collect();
+    Ok((merge(res, parts.into_iter().map(|p| p.0).collect())?, kept))
+}
+
+/// A disk patch triangulated in its flattening; `None` when the border cannot be placed or
+/// the triangulation fails (the caller falls back to the planar projection).
+fn conformal_disk(
+    g: &Graph,
+    res: &Resampled,
+    hs: &[HalfEdge],
+    d: f64,
+    index: usize,
+    coarse_res: &Resampled,
+    flat: &PatchFlattening,
+) -> Option<Result<PatchMesh>> {
+    let what = || format!("patch {index} (bounded by {})", describe_patch(g, hs));
+    let uv_of = |v: u32| flat.uv.get(&v).copied();
+    let mut pts = Vec::new();
     for h in hs {
         let (cs, fs) = (&coarse_res.segment_vertices[h.segment], &res.segment_vertices[h.segment]);
         let (mc, mf) = (cs.len() - 1, fs.len() - 1);
@@ -384,24 +413,17 @@ fn conformal_disk(
             let kf = if h.forward { k } else { mf - k };
             let x = kf as f64 * mc as f64 / mf as f64;
             let i0 = (x.floor() as usize).min(mc - 1);
-            let t = x - i0 as f64;
-            border.push(uv_of(cs[i0])?.lerp(uv_of(cs[i0 + 1])?, t));
+            pts.push(uv_of(cs[i0])?.lerp(uv_of(cs[i0 + 1])?, x - i0 as f64));
         }
     }
     let ids = loop_vertices(res, hs);
-    if border.len() != ids.len() {
+    if pts.len() != ids.len() {
         return None;
     }
-    let len3: f64 = (0..ids.len())
-        .map(|k| res.positions[ids[k] as usize].distance(res.positions[ids[(k + 1) % ids.len()] as usize]))
-        .sum();
-    let len2: f64 = (0..border.len()).map(|k| border[k].distance(border[(k + 1) % border.len()])).sum();
-    let scale = len3 / len2;
-    let pts: Vec<DVec2> = border.iter().map(|q| *q * scale).collect();
     let map: Vec<VRef> = ids.iter().map(|&i| VRef::Curve(i)).collect();
     let (tris, pos2, map) = triangulate(pts, map, d, &what).ok()?;
-    // New vertices start at the centroid of the patch: the solve needs only their metric.
-    let centroid = p3.iter().sum::<DVec3>() / p3.len() as f64;
+    // New vertices start at the centroid of the border: the solve needs only their metric.
+    let centroid = ids.iter().map(|&i| res.positions[i as usize]).sum::<DVec3>() / ids.len() as f64;
     Some(collect(tris, &pos2, &map, |_| centroid, &what))
 }
 
