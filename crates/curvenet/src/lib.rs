@@ -36,6 +36,7 @@ pub mod methods;
 pub mod metrics;
 pub mod network;
 pub mod operators;
+pub mod ordering;
 pub mod pipeline;
 pub mod solve;
 pub mod sparse;

@@ -12,6 +12,24 @@ use faer::sparse::linalg::cholesky::{
 use faer::{Conj, MatMut, Par, Side};
 use std::sync::Arc;
 
+/// The fill-reducing ordering of a factorisation.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Ordering {
+    /// Approximate minimum degree (faer's).
+    Amd,
+    /// Nested dissection by level structures ([`crate::ordering::nested_dissection`]).
+    NestedDissection,
+    /// Nested dissection from [`Ordering::NESTED_DISSECTION_FROM`] unknowns, else AMD.
+    #[default]
+    Auto,
+}
+
+impl Ordering {
+    /// Size from which [`Ordering::Auto`] uses nested dissection (measured: see
+    /// `docs/performance.md`).
+    pub const NESTED_DISSECTION_FROM: usize = 600_000;
+}
+
 /// A Cholesky factorisation `Q = L Lᵀ` of a sparse symmetric positive definite matrix.
 ///
 /// The symbolic analysis (fill-reducing ordering, elimination tree, supernodes) depends only
@@ -31,14 +49,31 @@ impl Cholesky {
     /// Errors with [`Error::Numerical`] when `q` is not numerically positive definite (a patch
     /// with no constrained vertex, degenerate triangles) or too large to index.
     pub fn factor(q: &Csc, what: &str) -> Result<Self> {
+        Self::factor_ordered(q, what, Ordering::Auto)
+    }
+
+    /// [`Cholesky::factor`] with a chosen fill-reducing ordering.
+    pub fn factor_ordered(q: &Csc, what: &str, ordering: Ordering) -> Result<Self> {
         let a = to_faer(q, what)?;
-        let symbolic = factorize_symbolic_cholesky(
-            a.symbolic(),
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams::default(),
-        )
-        .map_err(|e| Error::Numerical(format!("{what}: symbolic factorisation failed ({e:?})")))?;
+        let use_nd = match ordering {
+            Ordering::Amd => false,
+            Ordering::NestedDissection => true,
+            Ordering::Auto => q.ncols >= Ordering::NESTED_DISSECTION_FROM,
+        };
+        let (fwd, inv);
+        let ord = if use_nd {
+            fwd = crate::ordering::nested_dissection(q);
+            let mut i = vec![0u32; fwd.len()];
+            for (k, &v) in fwd.iter().enumerate() {
+                i[v as usize] = k as u32;
+            }
+            inv = i;
+            SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&fwd, &inv, q.ncols))
+        } else {
+            SymmetricOrdering::Amd
+        };
+        let symbolic = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, ord, CholeskySymbolicParams::default())
+            .map_err(|e| Error::Numerical(format!("{what}: symbolic factorisation failed ({e:?})")))?;
         let symbolic = Arc::new(symbolic);
         let values = numeric(&symbolic, &a, what)?;
         Ok(Cholesky { symbolic, pattern: Arc::new((q.col_ptr.clone(), q.row_idx.clone())), values })
@@ -53,6 +88,11 @@ impl Cholesky {
         let a = to_faer(q, what)?;
         let values = numeric(&self.symbolic, &a, what)?;
         Ok(Cholesky { symbolic: Arc::clone(&self.symbolic), pattern: Arc::clone(&self.pattern), values })
+    }
+
+    /// Number of non-zeros of the factor `L`.
+    pub fn factor_nnz(&self) -> usize {
+        self.symbolic.len_val()
     }
 
     /// Number of unknowns.

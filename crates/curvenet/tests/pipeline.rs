@@ -22,11 +22,6 @@ fn run(net: &Network, method: Method) -> curvenet::Surface {
     surface(net, &Options { method, ..Default::default() }).unwrap()
 }
 
-fn error(name: &str, method: Method) -> DistanceStats {
-    let s = run(&example(name).unwrap(), method);
-    distance_to_truth(&s.mesh.positions, s.mesh.num_curve, &example_truth(name).unwrap())
-}
-
 /// Mean distance to the z axis of the vertices within ±0.05 of mid-height.
 fn mid_radius(s: &curvenet::Surface) -> f64 {
     let r: Vec<f64> = s.mesh.positions.iter().filter(|p| p.z.abs() < 0.05).map(|p| p.truncate().length()).collect();
