@@ -20,6 +20,11 @@ use std::io::IsTerminal;
 
 use std::process::ExitCode;
 
+// Large buffers (factors, right-hand sides) are allocated and freed many times a run; mimalloc
+// keeps them out of repeated mmap/munmap and first-touch page faults.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 const AFTER_HELP: &str = "\
 Exit codes: 0 success, 1 bad input (malformed file, invalid network, non-manifold curves, I/O),
 2 usage error, 3 numerical failure.

@@ -25,6 +25,9 @@ pub struct Mesh {
     pub planar: Vec<[DVec2; 3]>,
     /// Per face: index of its patch. `#F`.
     pub face_patch: Vec<u32>,
+    /// The Laplacian's sparsity pattern, computed on first use (the faces must not change
+    /// afterwards).
+    pub(crate) pattern: std::sync::OnceLock<std::sync::Arc<crate::operators::LaplacianPattern>>,
 }
 
 impl Mesh {
@@ -34,6 +37,15 @@ impl Mesh {
 
     pub fn num_free(&self) -> usize {
         self.positions.len() - self.num_curve
+    }
+
+    /// The sparsity pattern of `Ls` for these faces (computed once).
+    pub fn laplacian_pattern(&self) -> std::sync::Arc<crate::operators::LaplacianPattern> {
+        self.pattern
+            .get_or_init(|| {
+                std::sync::Arc::new(crate::operators::LaplacianPattern::new(self.num_vertices(), &self.faces))
+            })
+            .clone()
     }
 
     /// `true` for curve vertices, `#V` (the PLY `curve` flag).

@@ -112,41 +112,82 @@ fn laplacian_pattern(n: usize, faces: &[[u32; 3]]) -> Csc {
     out
 }
 
-/// Assembles `Ls` and `M` on `mesh` with the given metric; `positions` are the 3D positions used
-/// by [`Metric::Surface`] (ignored for [`Metric::Planar`], which reads `mesh.planar`).
-pub fn cotan_operators(mesh: &Mesh, metric: Metric, positions: &[DVec3]) -> Operators {
-    let n = mesh.num_vertices();
-    let mut ls = laplacian_pattern(n, &mesh.faces);
-    let mut mass = vec![0.0; n];
-    let lift = |q: DVec2| DVec3::new(q.x, q.y, 0.0);
-    for (fi, f) in mesh.faces.iter().enumerate() {
-        let p = match metric {
-            Metric::Planar => {
-                let q = mesh.planar[fi];
-                [lift(q[0]), lift(q[1]), lift(q[2])]
-            }
-            Metric::Surface => [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]],
+/// The sparsity pattern of `Ls` for a set of faces, with the position of every face's
+/// entries in the value array, so that assembling `Ls` for any metric is a pass over the faces
+/// without searches.
+#[derive(Clone, Debug, Default)]
+pub struct LaplacianPattern {
+    /// `Ls`'s pattern (values zero).
+    pub csc: Csc,
+    /// Position of each vertex's diagonal entry in `csc.values`.
+    diag: Vec<u32>,
+    /// Per face and corner `k` (the edge opposite `k`, between `i = k+1` and `j = k+2`):
+    /// positions of the entries `(i, j)` and `(j, i)`.
+    slots: Vec<[[u32; 2]; 3]>,
+}
+
+impl LaplacianPattern {
+    pub fn new(n: usize, faces: &[[u32; 3]]) -> Self {
+        let csc = laplacian_pattern(n, faces);
+        let find = |i: usize, j: usize| {
+            let r = csc.col_ptr[j]..csc.col_ptr[j + 1];
+            let k = csc.row_idx[r.clone()].binary_search(&(i as u32)).unwrap_or(0);
+            (r.start + k) as u32
         };
-        let (cot, share) = corner_terms(p);
+        let diag = (0..n).map(|v| find(v, v)).collect();
+        let slots = faces
+            .iter()
+            .map(|f| {
+                let mut s = [[0u32; 2]; 3];
+                for (k, sk) in s.iter_mut().enumerate() {
+                    let (i, j) = (f[(k + 1) % 3] as usize, f[(k + 2) % 3] as usize);
+                    *sk = [find(i, j), find(j, i)];
+                }
+                s
+            })
+            .collect();
+        LaplacianPattern { csc, diag, slots }
+    }
+}
+
+/// Assembles `Ls` and `M` on `mesh` with the given metric; `positions` are the 3D positions used
+/// by [`Metric::Surface`] (ignored for [`Metric::Planar`], which reads `mesh.planar`). The
+/// per-face cotangents and areas are computed in parallel; the pattern is cached on the mesh.
+pub fn cotan_operators(mesh: &Mesh, metric: Metric, positions: &[DVec3]) -> Operators {
+    use rayon::prelude::*;
+    let n = mesh.num_vertices();
+    let pattern = mesh.laplacian_pattern();
+    let lift = |q: DVec2| DVec3::new(q.x, q.y, 0.0);
+    let terms: Vec<([f64; 3], [f64; 3])> = (0..mesh.faces.len())
+        .into_par_iter()
+        .with_min_len(4096)
+        .map(|fi| {
+            let f = mesh.faces[fi];
+            let p = match metric {
+                Metric::Planar => {
+                    let q = mesh.planar[fi];
+                    [lift(q[0]), lift(q[1]), lift(q[2])]
+                }
+                Metric::Surface => [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]],
+            };
+            corner_terms(p)
+        })
+        .collect();
+    let mut ls = pattern.csc.clone();
+    let mut mass = vec![0.0; n];
+    for ((f, (cot, share)), slots) in mesh.faces.iter().zip(&terms).zip(&pattern.slots) {
         for k in 0..3 {
             mass[f[k] as usize] += share[k];
             // The edge opposite corner k gets ½ cot(angle k).
-            let (i, j) = (f[(k + 1) % 3] as usize, f[(k + 2) % 3] as usize);
             let w = 0.5 * cot[k];
-            add(&mut ls, i, j, w);
-            add(&mut ls, j, i, w);
-            add(&mut ls, i, i, -w);
-            add(&mut ls, j, j, -w);
+            let (i, j) = (f[(k + 1) % 3] as usize, f[(k + 2) % 3] as usize);
+            ls.values[slots[k][0] as usize] += w;
+            ls.values[slots[k][1] as usize] += w;
+            ls.values[pattern.diag[i] as usize] -= w;
+            ls.values[pattern.diag[j] as usize] -= w;
         }
     }
     Operators { ls, mass }
-}
-
-fn add(m: &mut Csc, i: usize, j: usize, v: f64) {
-    let r = m.col_ptr[j]..m.col_ptr[j + 1];
-    if let Ok(k) = m.row_idx[r.clone()].binary_search(&(i as u32)) {
-        m.values[r.start + k] += v;
-    }
 }
 
 /// Mixed Voronoi areas of the mesh at `positions` (3D).
@@ -178,12 +219,16 @@ pub fn vertex_normals(faces: &[[u32; 3]], positions: &[DVec3]) -> Vec<DVec3> {
 /// normal (`+1` on a unit sphere). Vertices in `skip` (open-boundary vertices, where the
 /// one-sided Laplacian is not a curvature) get 0.
 pub fn cotan_mean_curvature(faces: &[[u32; 3]], positions: &[DVec3], skip: &[bool]) -> Vec<f64> {
+    use rayon::prelude::*;
     let n = positions.len();
     let mut lv = vec![DVec3::ZERO; n];
     let mut mass = vec![0.0; n];
-    for f in faces {
-        let p = [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]];
-        let (cot, share) = corner_terms(p);
+    let terms: Vec<([f64; 3], [f64; 3])> = faces
+        .par_iter()
+        .with_min_len(4096)
+        .map(|f| corner_terms([positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]]))
+        .collect();
+    for (f, (cot, share)) in faces.iter().zip(&terms) {
         for k in 0..3 {
             let (i, j) = (f[(k + 1) % 3] as usize, f[(k + 2) % 3] as usize);
             let w = 0.5 * cot[k];

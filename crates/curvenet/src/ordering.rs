@@ -17,6 +17,54 @@ use crate::sparse::Csc;
 /// large leaves give the least fill; the dissection matters at the top levels).
 const LEAF: usize = 4000;
 
+/// The symmetric pattern `P ∪ Pᵀ` of `q` without the diagonal (values unused).
+fn symmetric_pattern(q: &Csc) -> Csc {
+    let n = q.ncols;
+    let mut deg = vec![0usize; n];
+    for j in 0..n {
+        for &i in q.col(j).0 {
+            if i as usize != j {
+                deg[j] += 1;
+                deg[i as usize] += 1;
+            }
+        }
+    }
+    let mut col_ptr = vec![0usize; n + 1];
+    for j in 0..n {
+        col_ptr[j + 1] = col_ptr[j] + deg[j];
+    }
+    let mut fill = col_ptr.clone();
+    let mut rows = vec![0u32; col_ptr[n]];
+    for j in 0..n {
+        for &i in q.col(j).0 {
+            let iu = i as usize;
+            if iu != j {
+                rows[fill[j]] = i;
+                fill[j] += 1;
+                rows[fill[iu]] = j as u32;
+                fill[iu] += 1;
+            }
+        }
+    }
+    // Sort and deduplicate each column (a full input lists every edge twice).
+    let mut out =
+        Csc { nrows: n, ncols: n, col_ptr: vec![0], row_idx: Vec::with_capacity(rows.len() / 2), values: Vec::new() };
+    for j in 0..n {
+        let col = &mut rows[col_ptr[j]..col_ptr[j + 1]];
+        col.sort_unstable();
+        let mut last = u32::MAX;
+        for &r in col.iter() {
+            if r != last {
+                out.row_idx.push(r);
+                last = r;
+            }
+        }
+        out.col_ptr.push(out.row_idx.len());
+    }
+    out.values = vec![0.0; out.row_idx.len()];
+    out
+}
+
 /// Approximate minimum degree order (faer's AMD) of the subgraph of `q` induced by `set`;
 /// `local` is scratch of size `q.ncols`, all `u32::MAX`, and is left so.
 fn amd_order(q: &Csc, set: &[u32], local: &mut [u32]) -> Vec<u32> {
@@ -66,6 +114,8 @@ pub fn nested_dissection(q: &Csc) -> Vec<u32> {
 /// [`nested_dissection`] stopping at subsets of at most `leaf` vertices, which are ordered by
 /// minimum degree.
 pub fn nested_dissection_with_leaves(q: &Csc, leaf: usize) -> Vec<u32> {
+    // Both triangles of the pattern (the input may hold only the lower one).
+    let q = &symmetric_pattern(q);
     let n = q.ncols;
     let mut local = vec![u32::MAX; n];
     let mut reversed: Vec<u32> = Vec::with_capacity(n);

@@ -2,7 +2,6 @@
 //! need, assembled directly in compressed form (Gustavson's column-by-column algorithm) rather
 //! than through triplets.
 
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{MatMut, MatRef};
 use rayon::prelude::*;
 
@@ -49,6 +48,24 @@ impl Csc {
                 for (&i, &v) in rows.iter().zip(vals) {
                     y[(i as usize, c)] += v * xj;
                 }
+            }
+        }
+    }
+
+    /// `y = A x` for a **symmetric** `A` (rows gathered from columns), in parallel over the rows.
+    pub fn sym_mul_dense(&self, x: MatRef<'_, f64>, mut y: MatMut<'_, f64>) {
+        for c in 0..x.ncols() {
+            let xc = x.col(c);
+            let yc: Vec<f64> = (0..self.ncols)
+                .into_par_iter()
+                .with_min_len(8192)
+                .map(|i| {
+                    let (rows, vals) = self.col(i);
+                    rows.iter().zip(vals).map(|(&j, &v)| v * xc[j as usize]).sum()
+                })
+                .collect();
+            for (i, v) in yc.into_iter().enumerate() {
+                y[(i, c)] = v;
             }
         }
     }
@@ -133,13 +150,6 @@ impl Csc {
         }
         c
     }
-
-    /// The matrix as a faer sparse matrix (for factorisation).
-    pub fn to_faer(&self) -> Option<SparseColMat<u32, f64>> {
-        let col_ptr: Vec<u32> = self.col_ptr.iter().map(|&p| u32::try_from(p).ok()).collect::<Option<_>>()?;
-        let sym = SymbolicSparseColMat::new_checked(self.nrows, self.ncols, col_ptr, None, self.row_idx.clone());
-        Some(SparseColMat::new(sym, self.values.clone()))
-    }
 }
 
 /// `(A · diag(d) · B)` restricted to rows and columns `first..`, for square `A` and `B` of the
@@ -149,6 +159,16 @@ impl Csc {
 /// With `A = B = Ls` symmetric this is the Gram matrix `Σ_k d_k (Ls)_{k·}ᵀ (Ls)_{k·}` of the
 /// weighted least-squares energies, e.g. `Ls M⁻¹ Ls` (DESIGN §1).
 pub fn product(a: &Csc, d: &[f64], b: &Csc, first: usize) -> Csc {
+    product_impl(a, d, b, first, false)
+}
+
+/// The lower triangle (with the diagonal) of [`product`], for symmetric products that are only
+/// factored (the Cholesky factorisation reads the lower triangle): half the work and memory.
+pub fn product_lower(a: &Csc, d: &[f64], b: &Csc, first: usize) -> Csc {
+    product_impl(a, d, b, first, true)
+}
+
+fn product_impl(a: &Csc, d: &[f64], b: &Csc, first: usize, lower: bool) -> Csc {
     let n = b.ncols;
     let m = n - first;
     const CHUNK: usize = 2048;
@@ -173,7 +193,7 @@ pub fn product(a: &Csc, d: &[f64], b: &Csc, first: usize) -> Csc {
                     let (ai, av) = a.col(k as usize);
                     for (&i, &aik) in ai.iter().zip(av) {
                         let i = i as usize;
-                        if i < first {
+                        if i < first || (lower && i < j) {
                             continue;
                         }
                         let r = i - first;

@@ -22,7 +22,7 @@ pub const MIN_ANGLE_DEG: f64 = 25.0;
 pub const MAX_AREA_FACTOR: f64 = 0.69;
 /// Free vertices per unit planar area, times `d²`, that the refinement produces (measured;
 /// used to turn a target vertex count into a spacing).
-pub const VERTICES_PER_AREA: f64 = 1.08;
+pub const VERTICES_PER_AREA: f64 = 1.155;
 
 /// A vertex of a patch triangulation: a curve vertex (global id) or a new free vertex of the
 /// patch (local id).
@@ -83,15 +83,27 @@ fn triangulate(
             what()
         )));
     }
-    let vertices: Vec<Point2<f64>> = pts.iter().map(|p| Point2::new(p.x, p.y)).collect();
+    // Interior points on a hexagonal lattice of side `d` (equilateral triangles of edge d),
+    // away from the border: bulk loading them is much faster than inserting them one by one
+    // by refinement, which then only repairs the border zone.
+    let lattice = hex_lattice(&pts, d);
+    let vertices: Vec<Point2<f64>> = pts.iter().chain(&lattice).map(|p| Point2::new(p.x, p.y)).collect();
     let edges: Vec<[usize; 2]> = (0..n).map(|i| [i, (i + 1) % n]).collect();
+    let total = vertices.len();
+    let mut map = map;
+    let mut next_new =
+        map.iter().filter_map(|m| if let VRef::New(k) = m { Some(*k + 1) } else { None }).max().unwrap_or(0);
+    for _ in 0..lattice.len() {
+        map.push(VRef::New(next_new));
+        next_new += 1;
+    }
     let mut conflict = None;
     let cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::try_bulk_load_cdt(vertices, edges, |e| {
         conflict.get_or_insert(e);
     });
     let mut cdt =
         cdt.map_err(|e| Error::Topology(format!("{}: the projected cycle cannot be triangulated ({e:?})", what())))?;
-    if cdt.num_vertices() != n {
+    if cdt.num_vertices() != total {
         return Err(Error::Topology(format!(
             "{}: two boundary vertices fall on the same point when projected on the patch's plane \
              (the cycle folds over in projection)",
@@ -129,7 +141,6 @@ fn triangulate(
         excluded[f.index()] = true;
     }
     let positions: Vec<DVec2> = cdt.vertices().map(|v| DVec2::new(v.position().x, v.position().y)).collect();
-    let mut map = map;
     let mut tris = Vec::with_capacity(cdt.num_inner_faces());
     for f in cdt.inner_faces() {
         if excluded[f.fix().index()] {
@@ -144,14 +155,92 @@ fn triangulate(
     let mut new_of: Vec<Option<VRef>> = vec![None; positions.len()];
     for t in &tris {
         for &i in t {
-            if i >= n && new_of[i].is_none() {
+            if i >= total && new_of[i].is_none() {
                 new_of[i] = Some(VRef::New(next_new));
                 next_new += 1;
             }
         }
     }
-    map.extend((n..positions.len()).map(|i| new_of[i].unwrap_or(VRef::New(u32::MAX))));
+    map.extend((total..positions.len()).map(|i| new_of[i].unwrap_or(VRef::New(u32::MAX))));
     Ok((tris, positions, map))
+}
+
+/// Points of the hexagonal lattice of side `d` inside the counter-clockwise polygon `poly`, at
+/// least `0.6 d` from its border.
+fn hex_lattice(poly: &[DVec2], d: f64) -> Vec<DVec2> {
+    let n = poly.len();
+    let margin = 0.6 * d;
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for p in poly {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    let ext = hi - lo;
+    if !(ext.x > 2.0 * margin && ext.y > 2.0 * margin) || !(d > 0.0) || ext.x / d * ext.y / d > 4e8 {
+        return Vec::new();
+    }
+    // Border edges in a grid of cells of size d, to find the nearby ones.
+    let (nx, ny) = ((ext.x / d) as usize + 1, (ext.y / d) as usize + 1);
+    let cell = |p: DVec2| (((p.x - lo.x) / d) as usize).min(nx - 1) + nx * (((p.y - lo.y) / d) as usize).min(ny - 1);
+    let mut grid: Vec<Vec<u32>> = vec![Vec::new(); nx * ny];
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        let (cmin, cmax) = (a.min(b), a.max(b));
+        let (x0, x1) = (((cmin.x - lo.x) / d) as usize, (((cmax.x - lo.x) / d) as usize).min(nx - 1));
+        let (y0, y1) = (((cmin.y - lo.y) / d) as usize, (((cmax.y - lo.y) / d) as usize).min(ny - 1));
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                grid[x + nx * y].push(i as u32);
+            }
+        }
+    }
+    let near_border = |p: DVec2| {
+        let c = cell(p);
+        let (cx, cy) = (c % nx, c / nx);
+        for y in cy.saturating_sub(1)..=(cy + 1).min(ny - 1) {
+            for x in cx.saturating_sub(1)..=(cx + 1).min(nx - 1) {
+                for &e in &grid[x + nx * y] {
+                    let (a, b) = (poly[e as usize], poly[(e as usize + 1) % n]);
+                    let ab = b - a;
+                    let t = ((p - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+                    if p.distance(a + ab * t) < margin {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    };
+    let row = 0.5 * 3f64.sqrt() * d;
+    let mut out = Vec::new();
+    let mut xs = Vec::new();
+    let rows = (ext.y / row) as usize + 1;
+    for k in 0..=rows {
+        let y = lo.y + k as f64 * row + 0.5 * (ext.y - rows as f64 * row).max(0.0);
+        // Even-odd crossings of the horizontal line with the border.
+        xs.clear();
+        for i in 0..n {
+            let (a, b) = (poly[i], poly[(i + 1) % n]);
+            if (a.y > y) != (b.y > y) {
+                xs.push(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+            }
+        }
+        xs.sort_by(f64::total_cmp);
+        let shift = if k % 2 == 1 { 0.5 * d } else { 0.0 };
+        for pair in xs.chunks(2) {
+            let [x0, x1] = [pair[0], *pair.get(1).unwrap_or(&pair[0])];
+            let start = ((x0 - lo.x - shift) / d).ceil().max(0.0) as usize;
+            let mut x = lo.x + shift + start as f64 * d;
+            while x < x1 {
+                let p = DVec2::new(x, y);
+                if x > x0 && !near_border(p) {
+                    out.push(p);
+                }
+                x += d;
+            }
+        }
+    }
+    out
 }
 
 fn collect(
@@ -438,6 +527,7 @@ fn merge(res: &Resampled, parts: Vec<Result<PatchMesh>>) -> Result<Mesh> {
         on_boundary: res.on_boundary.clone(),
         planar: Vec::new(),
         face_patch: Vec::new(),
+        pattern: Default::default(),
     };
     for (pi, part) in parts.into_iter().enumerate() {
         let part = part?;

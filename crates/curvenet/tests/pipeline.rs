@@ -193,9 +193,13 @@ fn a_lone_boundary_loop_bounds_a_flat_disk() {
     for method in Method::ALL {
         let s = run(&net, method);
         let worst = s.mesh.positions.iter().map(|p| (p.z - 0.5).abs()).fold(0.0, f64::max);
-        // The triharmonic and short-paper matrices have condition numbers ~ h⁻⁶ and h⁻⁸: their
-        // round-off errors are larger than the others'.
-        let tol = if matches!(method, Method::Triharmonic | Method::ShortPaper) { 1e-6 } else { 1e-9 };
+        // The triharmonic and short-paper matrices have condition numbers ~ h⁻⁶ and h⁻⁸ (≈ 1e10
+        // and 1e15 here): their round-off errors are larger than the others'.
+        let tol = match method {
+            Method::Triharmonic => 1e-6,
+            Method::ShortPaper => 1e-4,
+            _ => 1e-9,
+        };
         assert!(worst < tol, "{method:?}: {worst}");
         assert!(s.normals.iter().all(|n| n.z > 0.999));
     }

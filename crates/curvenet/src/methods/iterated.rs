@@ -30,7 +30,7 @@ use crate::geom::DVec3;
 use crate::mesh::Mesh;
 use crate::operators::{blended_mean_curvature, cotan_operators, vertex_normals, Metric};
 use crate::solve::Cholesky;
-use crate::sparse::{product, Csc};
+use crate::sparse::{product_lower, Csc};
 use faer::Mat;
 use std::time::Instant;
 
@@ -146,7 +146,7 @@ pub fn iterate(
             q.add_diagonal(&prox);
             q
         };
-        let q = with_prox(product(&ops.ls, &inv_m, &ops.ls, first));
+        let q = with_prox(product_lower(&ops.ls, &inv_m, &ops.ls, first));
         t.operators += clock.elapsed().as_secs_f64();
         let clock = Instant::now();
         let chol = match &shared {
@@ -169,7 +169,7 @@ pub fn iterate(
             None
         } else {
             let clock = Instant::now();
-            let qf = with_prox(product(&ops.ls, &w, &ops.ls, first));
+            let qf = with_prox(product_lower(&ops.ls, &w, &ops.ls, first));
             t.operators += clock.elapsed().as_secs_f64();
             let clock = Instant::now();
             let c = match &fit_shared {

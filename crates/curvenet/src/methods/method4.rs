@@ -36,7 +36,7 @@ pub fn method4(mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<Met
     let h = blended_mean_curvature(&mesh.faces, &v_star, &n_star, &ops.mass, &mesh.on_boundary);
     // One-sided Laplacian of V* (for open-border vertices).
     let mut lv = Mat::<f64>::zeros(n, 3);
-    ops.ls.mul_dense(known_rows(n, n, &[&v_star]).as_ref(), lv.as_mut());
+    ops.ls.sym_mul_dense(known_rows(n, n, &[&v_star]).as_ref(), lv.as_mut());
     let mut u_curve = vec![DVec3::ZERO; nc];
     for (c, u) in u_curve.iter_mut().enumerate() {
         *u = if mesh.on_boundary[c] {

@@ -139,6 +139,7 @@ pub(crate) fn weighted_rhs(ls: &Csc, w: &[f64], target: Option<&Mat<f64>>, known
     let n = ls.nrows;
     let k = known.ncols();
     let mut y = Mat::<f64>::zeros(n, k);
+    // X̃ is zero but on the known rows: the column-wise product skips the zeros.
     ls.mul_dense(known.as_ref(), y.as_mut());
     for c in 0..k {
         for i in 0..n {
@@ -147,7 +148,7 @@ pub(crate) fn weighted_rhs(ls: &Csc, w: &[f64], target: Option<&Mat<f64>>, known
         }
     }
     let mut z = Mat::<f64>::zeros(n, k);
-    ls.mul_dense(y.as_ref(), z.as_mut());
+    ls.sym_mul_dense(y.as_ref(), z.as_mut());
     let mut out = Mat::<f64>::zeros(n - first, k);
     for c in 0..k {
         for i in first..n {

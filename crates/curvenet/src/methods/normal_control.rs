@@ -28,7 +28,7 @@ use crate::geom::{fmt_point, DVec3};
 use crate::mesh::Mesh;
 use crate::operators::{blended_mean_curvature, mixed_areas, Operators};
 use crate::solve::Cholesky;
-use crate::sparse::product;
+use crate::sparse::product_lower;
 use faer::Mat;
 use std::time::Instant;
 
@@ -68,7 +68,7 @@ pub(crate) fn propagate(mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> R
     }
     let clock = Instant::now();
     let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
-    let q = product(&ops.ls, &inv_m, &ops.ls, nc);
+    let q = product_lower(&ops.ls, &inv_m, &ops.ls, nc);
     let known = known_rows(n, nc, &[&mesh.positions, &mesh.curve_normals]);
     let rhs = weighted_rhs(&ops.ls, &inv_m, None, &known, nc);
     t.operators += clock.elapsed().as_secs_f64();
@@ -131,7 +131,7 @@ pub fn normal_control(
     let chol = match (reuse, prop.as_ref()) {
         (true, Some(p)) => p,
         _ => {
-            let mut q = product(&ops.ls, &w, &ops.ls, first);
+            let mut q = product_lower(&ops.ls, &w, &ops.ls, first);
             if let Some(omega) = params.soft_weight {
                 let mut diag = vec![0.0; n];
                 diag[..nc].iter_mut().for_each(|d| *d = omega);

@@ -10,7 +10,7 @@ use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::operators::Operators;
 use crate::solve::Cholesky;
-use crate::sparse::product;
+use crate::sparse::product_lower;
 use std::time::Instant;
 
 /// Solves `Δᵏ V = 0` (`order` 2 or 3) for the free vertices of `mesh`.
@@ -24,14 +24,14 @@ pub fn polyharmonic(mesh: &Mesh, ops: &Operators, order: usize, t: &mut SolveTim
     let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
     let known = known_rows(n, nc, &[&mesh.positions]);
     let (q, rhs) = if order == 2 {
-        (product(&ops.ls, &inv_m, &ops.ls, nc), weighted_rhs(&ops.ls, &inv_m, None, &known, nc))
+        (product_lower(&ops.ls, &inv_m, &ops.ls, nc), weighted_rhs(&ops.ls, &inv_m, None, &known, nc))
     } else {
         // T = Ls M⁻¹ Ls; Q₃ = −Ls M⁻¹ T; rhs = −(Q₃ X̃)_f = (Ls M⁻¹ T X̃)_f.
         let tt = crate::sparse::product(&ops.ls, &inv_m, &ops.ls, 0);
         let neg: Vec<f64> = inv_m.iter().map(|x| -x).collect();
-        let q3 = product(&ops.ls, &neg, &tt, nc);
+        let q3 = product_lower(&ops.ls, &neg, &tt, nc);
         let mut y = faer::Mat::<f64>::zeros(n, 3);
-        tt.mul_dense(known.as_ref(), y.as_mut());
+        tt.sym_mul_dense(known.as_ref(), y.as_mut());
         let rhs = weighted_rhs(&ops.ls, &inv_m, Some(&y), &faer::Mat::<f64>::zeros(n, 3), nc);
         (q3, rhs)
     };

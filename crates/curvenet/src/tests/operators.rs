@@ -32,6 +32,7 @@ fn mesh_of(p: Vec<DVec3>, t: Vec<[u32; 3]>) -> Mesh {
         faces: t,
         num_curve: 0,
         curve_normals: vec![],
+        pattern: Default::default(),
     }
 }
 

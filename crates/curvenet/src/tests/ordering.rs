@@ -49,3 +49,20 @@ fn disconnected_parts_are_ordered() {
     let q = Csc::from_triplets(500, 500, t);
     assert_eq!(nested_dissection(&q).len(), 500);
 }
+
+#[test]
+fn a_lower_triangle_gives_the_same_order() {
+    let q = grid(80);
+    let mut lower = Csc { nrows: q.nrows, ncols: q.ncols, col_ptr: vec![0], ..Default::default() };
+    for j in 0..q.ncols {
+        let (rows, vals) = q.col(j);
+        for (&i, &v) in rows.iter().zip(vals) {
+            if i as usize >= j {
+                lower.row_idx.push(i);
+                lower.values.push(v);
+            }
+        }
+        lower.col_ptr.push(lower.row_idx.len());
+    }
+    assert_eq!(nested_dissection_with_leaves(&q, 32), nested_dissection_with_leaves(&lower, 32));
+}
