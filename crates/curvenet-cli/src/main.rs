@@ -8,6 +8,7 @@ macro_rules! out {
     }};
 }
 
+mod bench;
 mod demo;
 mod eval;
 mod example;
@@ -64,6 +65,8 @@ enum Command {
     Eval(eval::EvalArgs),
     /// Run the paper's experiments: convergence under refinement, the accuracy report.
     Study(study::StudyArgs),
+    /// Time file-to-file runs of the bundled networks at several sizes (docs/performance.md).
+    Bench(bench::BenchArgs),
 }
 
 fn main() -> ExitCode {
@@ -74,6 +77,7 @@ fn main() -> ExitCode {
         Command::Demo(a) => demo::run(&a),
         Command::Eval(a) => eval::run(&a),
         Command::Study(a) => study::run(&a),
+        Command::Bench(a) => bench::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -98,4 +102,12 @@ impl Progress {
             eprintln!("  {name:<11}{seconds:>8.3} s   {detail}");
         }
     }
+}
+
+/// Peak resident memory of this process (Linux: `VmHWM` of /proc/self/status).
+pub(crate) fn peak_memory_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
 }

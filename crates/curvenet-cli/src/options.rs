@@ -94,6 +94,9 @@ pub struct SolveArgs {
     /// else 1e-3 × its bounding-box diagonal].
     #[arg(long, value_name = "S")]
     pub snap: Option<f64>,
+    /// The fast single pass: planar patching and weights, no iterations (one factorisation).
+    #[arg(long, conflicts_with = "paper")]
+    pub fast: bool,
     /// Reproduce the paper exactly: planar patching and weights, unweighted energy, eq. 1 divided
     /// by the area on V*, no guide update, no iteration (overrides those options).
     #[arg(long)]
@@ -103,6 +106,9 @@ pub struct SolveArgs {
 /// The library options the flags select (`--paper` resets the method's details).
 pub fn options(a: &SolveArgs) -> Options {
     let o = explicit_options(a);
+    if a.fast {
+        return Options { patching: curvenet::Patching::Planar, iterations: 0, ..o };
+    }
     if a.paper {
         return Options {
             method: o.method,

@@ -177,7 +177,7 @@ fn timed(net: &Network, options: &Options, runs: usize) -> Result<(Surface, f64)
     Ok((s, median(times)))
 }
 
-fn machine() -> String {
+pub(crate) fn machine() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
         .and_then(|s| {

@@ -43,6 +43,7 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
     let clock = Instant::now();
     let staged_mesh = stage_mesh(&a.output, surface.mesh_data())?;
     let write = clock.elapsed().as_secs_f64();
+    surface.stats.peak_memory_bytes = crate::peak_memory_bytes();
     let t = &mut surface.stats.timings;
     t.read = read;
     t.write = write;

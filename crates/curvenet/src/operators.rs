@@ -152,11 +152,16 @@ impl LaplacianPattern {
 
 /// Assembles `Ls` and `M` on `mesh` with the given metric; `positions` are the 3D positions used
 /// by [`Metric::Surface`] (ignored for [`Metric::Planar`], which reads `mesh.planar`). The
-/// per-face cotangents and areas are computed in parallel; the pattern is cached on the mesh.
+/// per-face cotangents and areas are computed in parallel; the pattern comes from the mesh's
+/// cache when [`Mesh::laplacian_pattern`] filled it.
 pub fn cotan_operators(mesh: &Mesh, metric: Metric, positions: &[DVec3]) -> Operators {
     use rayon::prelude::*;
     let n = mesh.num_vertices();
-    let pattern = mesh.laplacian_pattern();
+    // The pattern cached on the mesh (iterations assemble many times), else a temporary one.
+    let pattern = match mesh.pattern.get() {
+        Some(p) => p.clone(),
+        None => std::sync::Arc::new(LaplacianPattern::new(n, &mesh.faces)),
+    };
     let lift = |q: DVec2| DVec3::new(q.x, q.y, 0.0);
     let terms: Vec<([f64; 3], [f64; 3])> = (0..mesh.faces.len())
         .into_par_iter()

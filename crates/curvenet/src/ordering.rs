@@ -15,7 +15,51 @@ use crate::sparse::Csc;
 
 /// Subsets at most this large are not split further but ordered by minimum degree (measured:
 /// large leaves give the least fill; the dissection matters at the top levels).
-const LEAF: usize = 4000;
+const LEAF: usize = 500;
+
+/// Moves separator vertices that touch only one side into that side (the smaller side first,
+/// to keep the halves balanced). Uses `stamp` as side marks: `id + 1` for A, `id + 2` for B.
+fn thin_separator(
+    q: &Csc,
+    mut a: Vec<u32>,
+    mut b: Vec<u32>,
+    s: Vec<u32>,
+    stamp: &mut [u32],
+    id: u32,
+) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
+    let (ma, mb) = (id.wrapping_add(1), id.wrapping_add(2));
+    for &v in &a {
+        stamp[v as usize] = ma;
+    }
+    for &v in &b {
+        stamp[v as usize] = mb;
+    }
+    let mut rest = Vec::with_capacity(s.len());
+    // First into the smaller side, then into the other.
+    let (first, second) = if a.len() <= b.len() { ((ma, mb), (mb, ma)) } else { ((mb, ma), (ma, mb)) };
+    let mut pending = s;
+    for (into, other) in [first, second] {
+        rest.clear();
+        for &v in &pending {
+            let touches_other = q.col(v as usize).0.iter().any(|&w| stamp[w as usize] == other);
+            if touches_other {
+                rest.push(v);
+            } else {
+                stamp[v as usize] = into;
+                if into == ma {
+                    a.push(v)
+                } else {
+                    b.push(v)
+                }
+            }
+        }
+        std::mem::swap(&mut pending, &mut rest);
+    }
+    for &v in a.iter().chain(&b) {
+        stamp[v as usize] = 0;
+    }
+    (a, b, pending)
+}
 
 /// The symmetric pattern `P ∪ Pᵀ` of `q` without the diagonal (values unused).
 fn symmetric_pattern(q: &Csc) -> Csc {
@@ -217,6 +261,9 @@ pub fn nested_dissection_with_leaves(q: &Csc, leaf: usize) -> Vec<u32> {
             }
         }
         reset(&mut level, &queue);
+        // Thin the separator: a vertex with no neighbour on one side can join that side
+        // (the level of a two-ring stencil is wider than it needs to be).
+        let (a, b, s) = thin_separator(q, a, b, s, &mut stamp, id);
         reversed.extend(s.iter().rev());
         if !b.is_empty() {
             stack.push(b);

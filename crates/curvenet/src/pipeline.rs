@@ -105,6 +105,15 @@ impl Options {
     }
 }
 
+impl Options {
+    /// The fast single pass: the paper's planar patching and weights with the consistent guide
+    /// and one guide update (one factorisation; sphere 1e-3, torus 0.2 mean error at 20k
+    /// vertices — the default is 4× (sphere) to 80× (torus) more accurate for 2–3× the time).
+    pub fn fast() -> Self {
+        Options { patching: Patching::Planar, iterations: 0, ..Options::default() }
+    }
+}
+
 impl Default for Options {
     fn default() -> Self {
         Options {
@@ -179,6 +188,8 @@ pub struct Stats {
     pub iteration_stop: Option<String>,
     /// Largest vertex update of each iteration.
     pub iteration_updates: Vec<f64>,
+    /// Peak resident memory of the process in bytes, when the front end measured it.
+    pub peak_memory_bytes: Option<u64>,
     pub timings: Timings,
 }
 
@@ -513,6 +524,7 @@ pub fn surface_with_progress(
         iterations: iteration_report.0.len(),
         iteration_stop: iteration_report.1.map(|s| s.name().to_string()),
         iteration_updates: iteration_report.0,
+        peak_memory_bytes: None,
         timings,
     };
     let curve_flags = mesh.curve_flags();

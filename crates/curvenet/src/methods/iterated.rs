@@ -124,6 +124,8 @@ pub fn iterate(
     let soft = params.soft_weight.is_some();
     let known_normals = known_rows(n, if soft { 0 } else { nc }, &[&mesh.curve_normals]);
     let known_positions = known_rows(n, nc, &[&mesh.positions]);
+    // Every iteration assembles the operators on the same faces: cache their pattern.
+    let _ = mesh.laplacian_pattern();
     let mut shared: Option<Cholesky> = None;
     let mut fit_shared: Option<Cholesky> = None;
     for _ in 0..params.max_iterations {
