@@ -48,6 +48,22 @@ impl Mesh {
             .clone()
     }
 
+    /// The patch of each free vertex, `#V − num_curve` (free vertices lie inside one patch):
+    /// the parts of [`crate::solve::Cholesky::factor_in_parts`] for systems on the free
+    /// vertices.
+    pub fn free_vertex_patches(&self) -> Vec<u32> {
+        let nc = self.num_curve;
+        let mut parts = vec![0u32; self.num_free()];
+        for (f, &p) in self.faces.iter().zip(&self.face_patch) {
+            for &v in f {
+                if let Some(slot) = (v as usize).checked_sub(nc).and_then(|i| parts.get_mut(i)) {
+                    *slot = p;
+                }
+            }
+        }
+        parts
+    }
+
     /// `true` for curve vertices, `#V` (the PLY `curve` flag).
     pub fn curve_flags(&self) -> Vec<bool> {
         (0..self.positions.len()).map(|i| i < self.num_curve).collect()

@@ -3,19 +3,38 @@
 //! [`nested_dissection`] is George's automatic nested dissection by level structures (A.
 //! George, *Nested dissection of a regular finite element mesh*, SIAM J. Numer. Anal. 1973;
 //! George & Liu, *Computer Solution of Large Sparse Positive Definite Systems*, 1981, ch. 8):
-//! breadth-first levels from a pseudo-peripheral vertex, the middle level as separator, both
-//! halves ordered recursively and the separator last. On the meshes of this crate (2-manifolds
-//! of quasi-uniform triangles) the levels are curves of about √n vertices, so the factor has
-//! O(n log n) entries — fewer than minimum degree gives at large n — and the ordering itself
-//! costs a few breadth-first searches per level of the recursion. It works on the pattern of
-//! the matrix actually factored (the two-ring stencil of `Ls M⁻¹ Ls`), so every level is a true
-//! separator of that matrix.
+//! breadth-first levels from a pseudo-peripheral vertex, a middle level as separator, both
+//! halves ordered recursively and the separator last; small subsets are ordered by minimum
+//! degree. On the meshes of this crate (2-manifolds of quasi-uniform triangles) the levels are
+//! curves of about √n vertices, so the factor has O(n log n) entries — fewer than minimum
+//! degree gives at large n. It works on the pattern of the matrix actually factored (the
+//! two-ring stencil of `Ls M⁻¹ Ls`), so every level is a true separator of that matrix.
+//!
+//! [`nested_dissection_in_parts`] adds what the surfacing systems know: their unknowns fall in
+//! patches that touch only across the curves. Two patches' free vertices are coupled through
+//! the curve vertices between them, which are not unknowns, so one layer of free vertices
+//! along a curve separates the two-ring stencil where a cut across a patch needs two layers.
+//! The dissection groups whole patches while that is cheaper (measured on the 100k sphere: a
+//! factor with 21% fewer non-zeros than minimum degree's, 9% more than METIS's).
+//!
+//! The two halves of the first splits are ordered on two threads.
 
 use crate::sparse::Csc;
 
-/// Subsets at most this large are not split further but ordered by minimum degree (measured:
-/// large leaves give the least fill; the dissection matters at the top levels).
-const LEAF: usize = 500;
+/// Subsets at most this large are not split further but ordered by minimum degree (measured
+/// on the sphere at 100k and 1M unknowns: 150 gives 3% less fill than 500).
+const LEAF: usize = 150;
+
+/// The smallest share of a set (percent) on either side of a level separator.
+const LEVEL_BALANCE: usize = 25;
+
+/// The smallest share of a set (percent) on either side of a split along part borders.
+const PART_BALANCE: usize = 20;
+
+/// Sets at least this large have their two halves ordered in parallel (down to
+/// [`PARALLEL_DEPTH`] levels).
+const PARALLEL_SET: usize = 40_000;
+const PARALLEL_DEPTH: u32 = 2;
 
 /// Moves separator vertices that touch only one side into that side (the smaller side first,
 /// to keep the halves balanced). Uses `stamp` as side marks: `id + 1` for A, `id + 2` for B.
@@ -152,128 +171,362 @@ fn amd_order(q: &Csc, set: &[u32], local: &mut [u32]) -> Vec<u32> {
 /// An elimination order of the symmetric pattern of `q` (the diagonal is ignored): `order[k]`
 /// is the index eliminated `k`-th.
 pub fn nested_dissection(q: &Csc) -> Vec<u32> {
-    nested_dissection_with_leaves(q, LEAF)
+    nested_dissection_with_leaves(q, None, LEAF)
 }
 
-/// [`nested_dissection`] stopping at subsets of at most `leaf` vertices, which are ordered by
-/// minimum degree.
-pub fn nested_dissection_with_leaves(q: &Csc, leaf: usize) -> Vec<u32> {
+/// [`nested_dissection`] of a system whose unknowns are grouped in parts that touch each other
+/// only along thin borders: `parts[i]` is the part of unknown `i` (see the module
+/// documentation). `parts` of the wrong length are ignored.
+pub fn nested_dissection_in_parts(q: &Csc, parts: &[u32]) -> Vec<u32> {
+    nested_dissection_with_leaves(q, Some(parts), LEAF)
+}
+
+/// [`nested_dissection`] (or [`nested_dissection_in_parts`] with `parts`) stopping at subsets
+/// of at most `leaf` vertices, which are ordered by minimum degree.
+pub fn nested_dissection_with_leaves(q: &Csc, parts: Option<&[u32]>, leaf: usize) -> Vec<u32> {
     // Both triangles of the pattern (the input may hold only the lower one).
-    let q = &symmetric_pattern(q);
-    let n = q.ncols;
-    let mut local = vec![u32::MAX; n];
-    let mut reversed: Vec<u32> = Vec::with_capacity(n);
-    // Membership stamp per vertex and BFS level (u32::MAX: unvisited in the current search).
-    let mut stamp = vec![0u32; n];
-    let mut level = vec![u32::MAX; n];
-    let mut queue: Vec<u32> = Vec::with_capacity(n);
-    let mut next_stamp = 1u32;
-    let mut stack: Vec<Vec<u32>> = vec![(0..n as u32).collect()];
-    while let Some(set) = stack.pop() {
-        if set.len() <= leaf {
-            let order = if set.len() > 3 { amd_order(q, &set, &mut local) } else { set };
-            reversed.extend(order.iter().rev());
-            continue;
+    let g = symmetric_pattern(q);
+    let parts = parts.filter(|p| p.len() == q.ncols);
+    let part_count = parts.map_or(0, |p| p.iter().max().map_or(0, |m| *m as usize + 1));
+    let d = Dissection { g: &g, parts, part_count, leaf: leaf.max(1) };
+    d.order((0..q.ncols as u32).collect(), PARALLEL_DEPTH)
+}
+
+/// A partition of a vertex set: the two sides and the separator between them.
+struct Split {
+    a: Vec<u32>,
+    b: Vec<u32>,
+    s: Vec<u32>,
+}
+
+/// Per-thread scratch (vertex arrays sized `g.ncols`, part arrays sized by the part count).
+struct Scratch {
+    /// Membership stamps: a set's vertices carry its id (see [`thin_separator`]).
+    stamp: Vec<u32>,
+    next_stamp: u32,
+    /// Breadth-first levels (`u32::MAX`: unvisited).
+    level: Vec<u32>,
+    queue: Vec<u32>,
+    /// Local indices for [`amd_order`] (`u32::MAX` outside).
+    local: Vec<u32>,
+    /// Local index of each part in the current set (`u32::MAX`: absent).
+    part_local: Vec<u32>,
+}
+
+impl Scratch {
+    fn new(n: usize, part_count: usize) -> Self {
+        Scratch {
+            stamp: vec![0; n],
+            next_stamp: 1,
+            level: vec![u32::MAX; n],
+            queue: Vec::with_capacity(n),
+            local: vec![u32::MAX; n],
+            part_local: vec![u32::MAX; part_count],
         }
-        let id = next_stamp;
-        next_stamp = next_stamp.wrapping_add(1).max(1);
-        for &v in &set {
-            stamp[v as usize] = id;
+    }
+
+    /// A fresh stamp value with `k` consecutive values reserved.
+    fn stamp_id(&mut self, k: u32) -> u32 {
+        if self.next_stamp > u32::MAX - 8 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.next_stamp = 1;
         }
-        // Breadth-first search within the set; returns the visit order (levels in `level`).
-        let bfs = |start: u32, level: &mut [u32], queue: &mut Vec<u32>| {
-            queue.clear();
-            queue.push(start);
-            level[start as usize] = 0;
-            let mut head = 0;
-            while head < queue.len() {
-                let v = queue[head] as usize;
-                head += 1;
-                let (rows, _) = q.col(v);
-                for &w in rows {
-                    let wu = w as usize;
-                    if stamp[wu] == id && level[wu] == u32::MAX {
-                        level[wu] = level[v] + 1;
-                        queue.push(w);
+        let id = self.next_stamp;
+        self.next_stamp += k;
+        id
+    }
+}
+
+/// The separator size scaled by the imbalance of the sides (a ratio cut, 1× at an even split):
+/// a small separator that leaves most of the set on one side only postpones the work.
+fn ratio_cost(separator: usize, a: usize, b: usize) -> f64 {
+    let (a, b) = (a.max(1) as f64, b.max(1) as f64);
+    separator as f64 * (a + b) * (a + b) / (4.0 * a * b)
+}
+
+/// The graph being dissected and the options.
+struct Dissection<'a> {
+    /// Symmetric pattern without diagonal.
+    g: &'a Csc,
+    parts: Option<&'a [u32]>,
+    part_count: usize,
+    leaf: usize,
+}
+
+impl Dissection<'_> {
+    /// The elimination order of `set`: its halves in parallel while large, then sequentially.
+    fn order(&self, set: Vec<u32>, par_depth: u32) -> Vec<u32> {
+        if par_depth == 0 || set.len() < PARALLEL_SET {
+            return self.order_sequential(set);
+        }
+        let mut sc = Scratch::new(self.g.ncols, self.part_count);
+        let Split { a, b, s } = self.split(&set, &mut sc);
+        drop(sc);
+        let (mut oa, ob) = rayon::join(|| self.order(a, par_depth - 1), || self.order(b, par_depth - 1));
+        oa.extend(ob);
+        oa.extend(s);
+        oa
+    }
+
+    fn order_sequential(&self, set: Vec<u32>) -> Vec<u32> {
+        let mut sc = Scratch::new(self.g.ncols, self.part_count);
+        // Built backwards: a set's separator, then its halves (B's order, then A's).
+        let mut reversed: Vec<u32> = Vec::with_capacity(set.len());
+        let mut stack: Vec<Vec<u32>> = vec![set];
+        while let Some(set) = stack.pop() {
+            if set.len() <= self.leaf {
+                let order = if set.len() > 3 { amd_order(self.g, &set, &mut sc.local) } else { set };
+                reversed.extend(order.iter().rev());
+                continue;
+            }
+            let Split { a, b, s } = self.split(&set, &mut sc);
+            reversed.extend(s.iter().rev());
+            if !a.is_empty() {
+                stack.push(a);
+            }
+            if !b.is_empty() {
+                stack.push(b);
+            }
+        }
+        reversed.reverse();
+        reversed
+    }
+
+    /// Splits `set`: into its connected components (reached from the first vertex, and the
+    /// rest; no separator) or, when connected, by the cheaper of a level separator and a split
+    /// along part borders, both thinned.
+    fn split(&self, set: &[u32], sc: &mut Scratch) -> Split {
+        let g = self.g;
+        let id = sc.stamp_id(1);
+        for &v in set {
+            sc.stamp[v as usize] = id;
+        }
+        bfs(g, set[0], id, sc);
+        if sc.queue.len() < set.len() {
+            let a: Vec<u32> = sc.queue.clone();
+            let b: Vec<u32> = set.iter().copied().filter(|&v| sc.level[v as usize] == u32::MAX).collect();
+            reset_levels(sc);
+            return Split { a, b, s: Vec::new() };
+        }
+        let by_levels = split_by_levels(g, set, id, sc);
+        let by_parts = self.parts.and_then(|p| {
+            for &v in set {
+                sc.stamp[v as usize] = id;
+            }
+            split_by_parts(g, set, p, id, sc)
+        });
+        let mut thin = |sp: Split| {
+            let t = sc.stamp_id(3);
+            let (a, b, s) = thin_separator(g, sp.a, sp.b, sp.s, &mut sc.stamp, t);
+            Split { a, b, s }
+        };
+        let by_levels = thin(by_levels);
+        match by_parts.map(thin) {
+            Some(sp)
+                if ratio_cost(sp.s.len(), sp.a.len(), sp.b.len())
+                    <= ratio_cost(by_levels.s.len(), by_levels.a.len(), by_levels.b.len()) =>
+            {
+                sp
+            }
+            _ => by_levels,
+        }
+    }
+}
+
+/// Breadth-first search from `start` over the vertices stamped `id`: visit order in
+/// `sc.queue`, levels in `sc.level` (to be reset with [`reset_levels`]).
+fn bfs(g: &Csc, start: u32, id: u32, sc: &mut Scratch) {
+    let Scratch { stamp, level, queue, .. } = sc;
+    queue.clear();
+    queue.push(start);
+    level[start as usize] = 0;
+    let mut head = 0;
+    while head < queue.len() {
+        let v = queue[head] as usize;
+        head += 1;
+        let next = level[v] + 1;
+        for &w in g.col(v).0 {
+            let wu = w as usize;
+            if stamp[wu] == id && level[wu] == u32::MAX {
+                level[wu] = next;
+                queue.push(w);
+            }
+        }
+    }
+}
+
+fn reset_levels(sc: &mut Scratch) {
+    for &v in &sc.queue {
+        sc.level[v as usize] = u32::MAX;
+    }
+}
+
+/// The split of a connected `set` (stamped `id`, with a breadth-first search from any of its
+/// vertices in `sc`) at one level of a search from a pseudo-peripheral vertex (the last one
+/// that search reached): the level of least [`ratio_cost`] with at least [`LEVEL_BALANCE`]
+/// percent of the set on each side (a `g`-edge joins adjacent levels only). One search for the
+/// start, not the usual iteration to a fixed eccentricity: 0.5% more fill, 15% faster.
+fn split_by_levels(g: &Csc, set: &[u32], id: u32, sc: &mut Scratch) -> Split {
+    let start = sc.queue[sc.queue.len() - 1];
+    reset_levels(sc);
+    bfs(g, start, id, sc);
+    let depth = sc.level[sc.queue[sc.queue.len() - 1] as usize] as usize;
+    let mut count = vec![0usize; depth + 1];
+    for &v in &sc.queue {
+        count[sc.level[v as usize] as usize] += 1;
+    }
+    let lo = set.len() * LEVEL_BALANCE / 100;
+    let (mut below, mut best, mut sep) = (0usize, f64::INFINITY, None);
+    for (l, &c) in count.iter().enumerate() {
+        let above = set.len() - below - c;
+        let cost = ratio_cost(c, below, above);
+        if below >= lo && above >= lo && cost < best {
+            best = cost;
+            sep = Some(l);
+        }
+        below += c;
+    }
+    let sep = sep.unwrap_or_else(|| {
+        // No balanced level: the median one.
+        let mut acc = 0;
+        count
+            .iter()
+            .position(|&c| {
+                acc += c;
+                acc > set.len() / 2
+            })
+            .unwrap_or(depth)
+    }) as u32;
+    let (mut a, mut b, mut s) = (Vec::new(), Vec::new(), Vec::new());
+    for &v in &sc.queue {
+        match sc.level[v as usize].cmp(&sep) {
+            std::cmp::Ordering::Less => a.push(v),
+            std::cmp::Ordering::Greater => b.push(v),
+            std::cmp::Ordering::Equal => s.push(v),
+        }
+    }
+    reset_levels(sc);
+    Split { a, b, s }
+}
+
+/// The split of a connected `set` (stamped `id`) along part borders: the parts present are
+/// grouped in two by greedy growth over the part adjacency from several seeds (each side at
+/// least [`PART_BALANCE`] percent of the set, least [`ratio_cost`]), and the separator is the
+/// layer of vertices on one side that touch the other. `None` when the set lies in one part or
+/// no grouping is balanced enough.
+fn split_by_parts(g: &Csc, set: &[u32], parts: &[u32], id: u32, sc: &mut Scratch) -> Option<Split> {
+    // Local part indices.
+    let mut part_local = std::mem::take(&mut sc.part_local);
+    let mut present: Vec<u32> = Vec::new();
+    for &v in set {
+        let p = parts[v as usize] as usize;
+        if part_local[p] == u32::MAX {
+            part_local[p] = present.len() as u32;
+            present.push(p as u32);
+        }
+    }
+    let result = (|| {
+        let k = present.len();
+        if k < 2 {
+            return None;
+        }
+        let lp = |v: u32| part_local[parts[v as usize] as usize] as usize;
+        let mut weight = vec![0usize; k];
+        // (p, r) once per vertex of part p with a neighbour in part r.
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        let mut seen: Vec<usize> = Vec::new();
+        for &v in set {
+            let p = lp(v);
+            weight[p] += 1;
+            seen.clear();
+            for &w in g.col(v as usize).0 {
+                if sc.stamp[w as usize] == id {
+                    let r = lp(w);
+                    if r != p && !seen.contains(&r) {
+                        seen.push(r);
+                        pairs.push((p as u32, r as u32));
                     }
                 }
             }
-        };
-        let reset = |level: &mut [u32], queue: &[u32]| {
-            for &v in queue {
-                level[v as usize] = u32::MAX;
+        }
+        pairs.sort_unstable();
+        // border[(p, r)] as adjacency lists: (r, |p→r|, |r→p|).
+        let mut count: Vec<((u32, u32), usize)> = Vec::new();
+        for &pr in &pairs {
+            match count.last_mut() {
+                Some((last, c)) if *last == pr => *c += 1,
+                _ => count.push((pr, 1)),
             }
-        };
-        bfs(set[0], &mut level, &mut queue);
-        if queue.len() < set.len() {
-            // Disconnected: the reached component and the rest are ordered separately.
-            let reached: Vec<u32> = queue.clone();
-            reset(&mut level, &queue);
-            for &v in &reached {
-                stamp[v as usize] = 0;
+        }
+        let lookup = |p: u32, r: u32| count.binary_search_by(|(pr, _)| pr.cmp(&(p, r))).map_or(0, |i| count[i].1);
+        let mut adj: Vec<Vec<(usize, usize, usize)>> = vec![Vec::new(); k];
+        for &((p, r), c) in &count {
+            adj[p as usize].push((r as usize, c, lookup(r, p)));
+        }
+        let total = set.len();
+        let (lo, hi) = (total * PART_BALANCE / 100, total - total * PART_BALANCE / 100);
+        // Seeds: every part when there are few, else a spread of them.
+        let step = (k / 16).max(1);
+        let mut best: Option<(f64, Vec<bool>, bool)> = None;
+        for seed in (0..k).step_by(step) {
+            let mut in_a = vec![false; k];
+            // gain[x]: change of the border (both ways) when x joins A; frontier: touches A.
+            let mut gain: Vec<i64> = (0..k).map(|x| adj[x].iter().map(|&(_, c, b)| (c + b) as i64).sum()).collect();
+            let mut frontier = vec![false; k];
+            let (mut w_a, mut out_a, mut out_b) = (0usize, 0usize, 0usize);
+            let mut next = Some(seed);
+            while let Some(x) = next {
+                in_a[x] = true;
+                w_a += weight[x];
+                for &(r, c, back) in &adj[x] {
+                    if in_a[r] {
+                        out_a -= back;
+                        out_b -= c;
+                    } else {
+                        out_a += c;
+                        out_b += back;
+                        gain[r] -= 2 * (c + back) as i64;
+                        frontier[r] = true;
+                    }
+                }
+                if w_a >= lo && w_a <= hi {
+                    let cost = ratio_cost(out_a.min(out_b), w_a, total - w_a);
+                    if best.as_ref().map_or(true, |(c, _, _)| cost < *c) {
+                        best = Some((cost, in_a.clone(), out_a <= out_b));
+                    }
+                }
+                if w_a >= hi {
+                    break;
+                }
+                next = (0..k).filter(|&x| frontier[x] && !in_a[x]).min_by_key(|&x| gain[x]);
             }
-            let rest: Vec<u32> = set.iter().copied().filter(|&v| stamp[v as usize] == id).collect();
-            stack.push(reached);
-            stack.push(rest);
-            continue;
         }
-        // Pseudo-peripheral start: the last vertex reached, twice.
-        let mut start = *queue.last().unwrap_or(&set[0]);
-        for _ in 0..2 {
-            reset(&mut level, &queue);
-            bfs(start, &mut level, &mut queue);
-            start = *queue.last().unwrap_or(&start);
-        }
-        // A level separates the lower levels from the higher ones (a Q-edge joins adjacent
-        // levels only): the smallest level with at least 35% of the set on each side.
-        let depth = level[queue[queue.len() - 1] as usize] as usize;
-        let mut count = vec![0usize; depth + 1];
-        for &v in &queue {
-            count[level[v as usize] as usize] += 1;
-        }
-        let lo = set.len() * 35 / 100;
-        let (mut below, mut best, mut sep) = (0usize, usize::MAX, None);
-        for (l, &c) in count.iter().enumerate() {
-            let above = set.len() - below - c;
-            if below >= lo && above >= lo && c < best {
-                best = c;
-                sep = Some(l);
+        let (_, in_a, sep_in_a) = best?;
+        // The side whose border is smaller gives its border layer as separator; the other
+        // side keeps all its vertices (stamped `keep`).
+        let keep = sc.stamp_id(1);
+        for &v in set {
+            if in_a[lp(v)] != sep_in_a {
+                sc.stamp[v as usize] = keep;
             }
-            below += c;
         }
-        let sep = sep.unwrap_or_else(|| {
-            // No balanced level: the median one.
-            let mut acc = 0;
-            count
-                .iter()
-                .position(|&c| {
-                    acc += c;
-                    acc > set.len() / 2
-                })
-                .unwrap_or(depth)
-        }) as u32;
         let (mut a, mut b, mut s) = (Vec::new(), Vec::new(), Vec::new());
-        for &v in &queue {
-            match level[v as usize].cmp(&sep) {
-                std::cmp::Ordering::Less => a.push(v),
-                std::cmp::Ordering::Greater => b.push(v),
-                std::cmp::Ordering::Equal => s.push(v),
+        for &v in set {
+            if sc.stamp[v as usize] == keep {
+                b.push(v);
+            } else if g.col(v as usize).0.iter().any(|&w| sc.stamp[w as usize] == keep) {
+                s.push(v);
+            } else {
+                a.push(v);
             }
         }
-        reset(&mut level, &queue);
-        // Thin the separator: a vertex with no neighbour on one side can join that side
-        // (the level of a two-ring stencil is wider than it needs to be).
-        let (a, b, s) = thin_separator(q, a, b, s, &mut stamp, id);
-        reversed.extend(s.iter().rev());
-        if !b.is_empty() {
-            stack.push(b);
-        }
-        if !a.is_empty() {
-            stack.push(a);
-        }
+        Some(Split { a, b, s })
+    })();
+    for p in present {
+        part_local[p as usize] = u32::MAX;
     }
-    reversed.reverse();
-    reversed
+    sc.part_local = part_local;
+    result
 }
 
 #[cfg(test)]

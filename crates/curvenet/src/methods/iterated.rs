@@ -24,7 +24,7 @@
 //! `max_iterations`, or — keeping the last good surface — when a triangle degenerates or the
 //! updates grow (divergence).
 
-use super::{check_finite, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings, Weighting};
+use super::{check_finite, factor_on, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings, Weighting};
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::mesh::Mesh;
@@ -153,7 +153,7 @@ pub fn iterate(
         let clock = Instant::now();
         let chol = match &shared {
             Some(c) => c.refactor(&q, "iterated propagation system")?,
-            None => Cholesky::factor(&q, "iterated propagation system")?,
+            None => factor_on(mesh, &q, first, "iterated propagation system")?,
         };
         t.factor += clock.elapsed().as_secs_f64();
 
@@ -176,7 +176,7 @@ pub fn iterate(
             let clock = Instant::now();
             let c = match &fit_shared {
                 Some(c) => c.refactor(&qf, "iterated fit system")?,
-                None => Cholesky::factor(&qf, "iterated fit system")?,
+                None => factor_on(mesh, &qf, first, "iterated fit system")?,
             };
             t.factor += clock.elapsed().as_secs_f64();
             Some(c)

@@ -17,6 +17,8 @@ pub mod polyharmonic;
 pub mod short_paper;
 
 use crate::geom::DVec3;
+use crate::mesh::Mesh;
+use crate::solve::Cholesky;
 use crate::sparse::Csc;
 use faer::Mat;
 
@@ -164,6 +166,13 @@ pub(crate) fn scatter(sol: &Mat<f64>, col: usize, first: usize, out: &mut [DVec3
     for i in 0..sol.nrows() {
         out[first + i] = DVec3::new(sol[(i, col)], sol[(i, col + 1)], sol[(i, col + 2)]);
     }
+}
+
+/// Factorises a system on the vertices `first..` of `mesh`: along the patches when the
+/// unknowns are the free vertices (see [`Cholesky::factor_in_parts`]).
+pub(crate) fn factor_on(mesh: &Mesh, q: &Csc, first: usize, what: &str) -> crate::error::Result<Cholesky> {
+    let parts = (first == mesh.num_curve).then(|| mesh.free_vertex_patches());
+    Cholesky::factor_in_parts(q, what, parts.as_deref())
 }
 
 pub(crate) fn check_finite(p: &[DVec3], what: &str) -> crate::error::Result<()> {

@@ -22,7 +22,9 @@
 //!    one the fit's Laplacian sees.
 //! 5. Soft constraints ([CG] §4.5): `+ ω_s Σ_{s ∈ curve} ‖v_s − v*_s‖²`, all vertices unknown.
 
-use super::{check_finite, known_rows, scatter, weighted_rhs, GuideArea, MethodResult, SolveTimings, Weighting};
+use super::{
+    check_finite, factor_on, known_rows, scatter, weighted_rhs, GuideArea, MethodResult, SolveTimings, Weighting,
+};
 use crate::error::{Error, Result};
 use crate::geom::{fmt_point, DVec3};
 use crate::mesh::Mesh;
@@ -71,7 +73,7 @@ pub(crate) fn propagate(mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> R
     let q = product_lower(&ops.ls, &inv_m, &ops.ls, nc);
     t.operators += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
-    let chol = Cholesky::factor(&q, "propagation system (L² V* = 0)")?;
+    let chol = factor_on(mesh, &q, nc, "propagation system (L² V* = 0)")?;
     drop(q);
     t.factor += clock.elapsed().as_secs_f64();
     // The right-hand sides after the factorisation: less memory at its peak.
@@ -143,8 +145,10 @@ pub fn normal_control(
             }
             t.operators += clock.elapsed().as_secs_f64();
             let clock = Instant::now();
-            own = Cholesky::factor(
+            own = factor_on(
+                mesh,
                 &q,
+                first,
                 if params.soft_weight.is_some() { "soft-constrained system" } else { "fit system (L V = −2 H N*)" },
             )?;
             t.factor += clock.elapsed().as_secs_f64();

@@ -5,11 +5,10 @@
 //! Ls)_fc V_c` and, for `Δ³`, the matrix `−Ls M⁻¹ Ls M⁻¹ Ls` — the same systems as libigl's
 //! `harmonic(V, F, b, bc, k)` for the cotangent Laplacian.
 
-use super::{check_finite, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings};
+use super::{check_finite, factor_on, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::operators::Operators;
-use crate::solve::Cholesky;
 use crate::sparse::product_lower;
 use std::time::Instant;
 
@@ -37,7 +36,7 @@ pub fn polyharmonic(mesh: &Mesh, ops: &Operators, order: usize, t: &mut SolveTim
     };
     t.operators += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
-    let chol = Cholesky::factor(&q, if order == 2 { "biharmonic system" } else { "triharmonic system" })?;
+    let chol = factor_on(mesh, &q, nc, if order == 2 { "biharmonic system" } else { "triharmonic system" })?;
     t.factor += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
     let mut sol = rhs;

@@ -11,11 +11,10 @@
 //! `--soft` (relative to the guide term).
 
 use super::normal_control::{propagate, Propagation};
-use super::{check_finite, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings};
+use super::{check_finite, factor_on, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::operators::{blended_mean_curvature, Operators};
-use crate::solve::Cholesky;
 use crate::sparse::product;
 use faer::Mat;
 use std::time::Instant;
@@ -81,7 +80,7 @@ pub fn short_paper(
     }
     t.operators += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
-    let chol = Cholesky::factor(&q, "short-paper system (Δ⁴ + ω₁ guide)")?;
+    let chol = factor_on(mesh, &q, first, "short-paper system (Δ⁴ + ω₁ guide)")?;
     t.factor += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
     let b0 = rhs.clone();
