@@ -64,6 +64,33 @@ fn corner_terms(p: [DVec3; 3]) -> ([f64; 3], [f64; 3]) {
     (cot, share)
 }
 
+/// Sums per-face contributions into per-vertex values on all threads: `add(face, acc)` adds
+/// face `face`'s share to `acc` (length `n`); each thread fills its own buffer over a range of
+/// faces and the buffers are summed (a scatter without locks or atomics).
+fn accumulate<T>(n: usize, num_faces: usize, add: impl Fn(usize, &mut [T]) + Sync) -> Vec<T>
+where
+    T: Copy + Default + Send + Sync + std::ops::AddAssign,
+{
+    use rayon::prelude::*;
+    let threads = if num_faces < 20_000 { 1 } else { rayon::current_num_threads().max(1) };
+    let chunk = num_faces.div_ceil(threads).max(1);
+    let mut parts: Vec<Vec<T>> = (0..threads)
+        .into_par_iter()
+        .map(|t| {
+            let mut acc = vec![T::default(); n];
+            for f in t * chunk..((t + 1) * chunk).min(num_faces) {
+                add(f, &mut acc);
+            }
+            acc
+        })
+        .collect();
+    let mut total = parts.swap_remove(0);
+    for p in parts {
+        total.par_iter_mut().zip(p.par_iter()).with_min_len(8192).for_each(|(a, b)| *a += *b);
+    }
+    total
+}
+
 /// The sparsity pattern of `Ls`: each vertex's neighbours and itself, sorted.
 fn laplacian_pattern(n: usize, faces: &[[u32; 3]]) -> Csc {
     let mut deg = vec![1usize; n];
@@ -92,15 +119,24 @@ fn laplacian_pattern(n: usize, faces: &[[u32; 3]]) -> Csc {
             }
         }
     }
-    // Sort and deduplicate each column, then compact.
+    // Sort each column (in parallel), then deduplicate and compact.
+    {
+        use rayon::prelude::*;
+        let mut columns: Vec<&mut [u32]> = Vec::with_capacity(n);
+        let mut rest = rows.as_mut_slice();
+        for j in 0..n {
+            let (col, tail) = std::mem::take(&mut rest).split_at_mut(col_ptr[j + 1] - col_ptr[j]);
+            columns.push(&mut col[..fill[j] - col_ptr[j]]);
+            rest = tail;
+        }
+        columns.par_iter_mut().with_min_len(4096).for_each(|c| c.sort_unstable());
+    }
     let mut out =
         Csc { nrows: n, ncols: n, col_ptr: Vec::with_capacity(n + 1), row_idx: Vec::new(), values: Vec::new() };
     out.col_ptr.push(0);
     for j in 0..n {
-        let col = &mut rows[col_ptr[j]..fill[j]];
-        col.sort_unstable();
         let mut last = u32::MAX;
-        for &r in col.iter() {
+        for &r in &rows[col_ptr[j]..fill[j]] {
             if r != last {
                 out.row_idx.push(r);
                 last = r;
@@ -134,9 +170,11 @@ impl LaplacianPattern {
             let k = csc.row_idx[r.clone()].binary_search(&(i as u32)).unwrap_or(0);
             (r.start + k) as u32
         };
-        let diag = (0..n).map(|v| find(v, v)).collect();
+        use rayon::prelude::*;
+        let diag = (0..n).into_par_iter().with_min_len(8192).map(|v| find(v, v)).collect();
         let slots = faces
-            .iter()
+            .par_iter()
+            .with_min_len(8192)
             .map(|f| {
                 let mut s = [[0u32; 2]; 3];
                 for (k, sk) in s.iter_mut().enumerate() {
@@ -163,95 +201,117 @@ pub fn cotan_operators(mesh: &Mesh, metric: Metric, positions: &[DVec3]) -> Oper
         None => std::sync::Arc::new(LaplacianPattern::new(n, &mesh.faces)),
     };
     let lift = |q: DVec2| DVec3::new(q.x, q.y, 0.0);
-    let terms: Vec<([f64; 3], [f64; 3])> = (0..mesh.faces.len())
-        .into_par_iter()
-        .with_min_len(4096)
-        .map(|fi| {
-            let f = mesh.faces[fi];
-            let p = match metric {
-                Metric::Planar => {
-                    let q = mesh.planar[fi];
-                    [lift(q[0]), lift(q[1]), lift(q[2])]
-                }
-                Metric::Surface => [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]],
-            };
-            corner_terms(p)
-        })
-        .collect();
-    let mut ls = pattern.csc.clone();
-    let mut mass = vec![0.0; n];
-    for ((f, (cot, share)), slots) in mesh.faces.iter().zip(&terms).zip(&pattern.slots) {
+    let nnz = pattern.csc.values.len();
+    // One pass over the faces: the off-diagonal entries (values[..nnz]) and the areas
+    // (values[nnz..]); the diagonal follows from the columns' sums.
+    let mut values = accumulate(nnz + n, mesh.faces.len(), |fi, acc: &mut [f64]| {
+        let f = mesh.faces[fi];
+        let p = match metric {
+            Metric::Planar => {
+                let q = mesh.planar[fi];
+                [lift(q[0]), lift(q[1]), lift(q[2])]
+            }
+            Metric::Surface => [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]],
+        };
+        let (cot, share) = corner_terms(p);
+        let slots = &pattern.slots[fi];
         for k in 0..3 {
-            mass[f[k] as usize] += share[k];
             // The edge opposite corner k gets ½ cot(angle k).
             let w = 0.5 * cot[k];
-            let (i, j) = (f[(k + 1) % 3] as usize, f[(k + 2) % 3] as usize);
-            ls.values[slots[k][0] as usize] += w;
-            ls.values[slots[k][1] as usize] += w;
-            ls.values[pattern.diag[i] as usize] -= w;
-            ls.values[pattern.diag[j] as usize] -= w;
+            acc[slots[k][0] as usize] += w;
+            acc[slots[k][1] as usize] += w;
+            acc[nnz + f[k] as usize] += share[k];
         }
+    });
+    let mass = values.split_off(nnz);
+    // (Ls)_jj = −Σ_{i≠j} (Ls)_ij: the diagonal entries are still zero, so minus the column sum.
+    let diag: Vec<f64> = (0..n)
+        .into_par_iter()
+        .with_min_len(8192)
+        .map(|j| -values[pattern.csc.col_ptr[j]..pattern.csc.col_ptr[j + 1]].iter().sum::<f64>())
+        .collect();
+    for (j, d) in diag.into_iter().enumerate() {
+        values[pattern.diag[j] as usize] = d;
     }
+    let ls =
+        Csc { nrows: n, ncols: n, col_ptr: pattern.csc.col_ptr.clone(), row_idx: pattern.csc.row_idx.clone(), values };
     Operators { ls, mass }
 }
 
 /// Mixed Voronoi areas of the mesh at `positions` (3D).
 pub fn mixed_areas(faces: &[[u32; 3]], positions: &[DVec3]) -> Vec<f64> {
-    let mut a = vec![0.0; positions.len()];
-    for f in faces {
+    accumulate(positions.len(), faces.len(), |fi, a: &mut [f64]| {
+        let f = faces[fi];
         let (_, share) = corner_terms([positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]]);
         for k in 0..3 {
             a[f[k] as usize] += share[k];
         }
-    }
-    a
+    })
 }
 
 /// Area-weighted vertex normals (unit; zero for isolated vertices).
 pub fn vertex_normals(faces: &[[u32; 3]], positions: &[DVec3]) -> Vec<DVec3> {
-    let mut n = vec![DVec3::ZERO; positions.len()];
-    for f in faces {
+    use rayon::prelude::*;
+    let n = accumulate(positions.len(), faces.len(), |fi, n: &mut [DVec3]| {
+        let f = faces[fi];
         let [a, b, c] = [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]];
         let fnrm = (b - a).cross(c - a);
-        for &i in f {
+        for &i in &f {
             n[i as usize] += fnrm;
         }
-    }
-    n.iter().map(|v| v.normalize_or_zero()).collect()
+    });
+    n.par_iter().with_min_len(8192).map(|v| v.normalize_or_zero()).collect()
 }
 
 /// Signed mean curvature by the cotangent formula: `H = −½ (M⁻¹ Ls V) · n` with `n` the vertex
 /// normal (`+1` on a unit sphere). Vertices in `skip` (open-boundary vertices, where the
 /// one-sided Laplacian is not a curvature) get 0.
 pub fn cotan_mean_curvature(faces: &[[u32; 3]], positions: &[DVec3], skip: &[bool]) -> Vec<f64> {
+    normals_and_mean_curvature(faces, positions, skip).1
+}
+
+/// [`vertex_normals`] and [`cotan_mean_curvature`] together (the curvature needs the normals).
+pub fn normals_and_mean_curvature(faces: &[[u32; 3]], positions: &[DVec3], skip: &[bool]) -> (Vec<DVec3>, Vec<f64>) {
     use rayon::prelude::*;
-    let n = positions.len();
-    let mut lv = vec![DVec3::ZERO; n];
-    let mut mass = vec![0.0; n];
-    let terms: Vec<([f64; 3], [f64; 3])> = faces
-        .par_iter()
-        .with_min_len(4096)
-        .map(|f| corner_terms([positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]]))
-        .collect();
-    for (f, (cot, share)) in faces.iter().zip(&terms) {
+    /// Per vertex: `Ls V`, the mixed area and the area-weighted normal.
+    #[derive(Clone, Copy, Default)]
+    struct LapArea(DVec3, f64, DVec3);
+    impl std::ops::AddAssign for LapArea {
+        fn add_assign(&mut self, o: Self) {
+            self.0 += o.0;
+            self.1 += o.1;
+            self.2 += o.2;
+        }
+    }
+    let acc = accumulate(positions.len(), faces.len(), |fi, acc: &mut [LapArea]| {
+        let f = faces[fi];
+        let p = [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]];
+        let (cot, share) = corner_terms(p);
+        let fnrm = (p[1] - p[0]).cross(p[2] - p[0]);
         for k in 0..3 {
             let (i, j) = (f[(k + 1) % 3] as usize, f[(k + 2) % 3] as usize);
             let w = 0.5 * cot[k];
-            lv[i] += w * (positions[j] - positions[i]);
-            lv[j] += w * (positions[i] - positions[j]);
-            mass[f[k] as usize] += share[k];
+            acc[i].0 += w * (positions[j] - positions[i]);
+            acc[j].0 += w * (positions[i] - positions[j]);
+            let v = &mut acc[f[k] as usize];
+            v.1 += share[k];
+            v.2 += fnrm;
         }
-    }
-    let normals = vertex_normals(faces, positions);
-    (0..n)
+    });
+    let normals: Vec<DVec3> = acc.par_iter().with_min_len(8192).map(|a| a.2.normalize_or_zero()).collect();
+    let h = (0..positions.len())
+        .into_par_iter()
+        .with_min_len(8192)
         .map(|i| {
-            if skip.get(i).copied().unwrap_or(false) || mass[i] <= 0.0 {
+            let LapArea(lv, mass, _) = acc[i];
+            if skip.get(i).copied().unwrap_or(false) || mass <= 0.0 {
                 0.0
             } else {
-                -0.5 * lv[i].dot(normals[i]) / mass[i]
+                -0.5 * lv.dot(normals[i]) / mass
             }
         })
-        .collect()
+        .collect();
+    (normals, h)
 }
 
 /// The paper's mean-curvature vector ([CG] eq. 1), blending positions `V*` with normals `N*`:
@@ -274,17 +334,20 @@ pub fn blended_mean_curvature(
     area: &[f64],
     skip: &[bool],
 ) -> Vec<f64> {
+    use rayon::prelude::*;
     let n = positions.len();
-    let mut h = vec![DVec3::ZERO; n];
-    for f in faces {
+    let h = accumulate(n, faces.len(), |fi, h: &mut [DVec3]| {
+        let f = faces[fi];
         for k in 0..3 {
             let v = f[k] as usize;
             let (a, b) = (f[(k + 1) % 3] as usize, f[(k + 2) % 3] as usize);
             let m = (normals[v] + normals[a] + normals[b]).normalize_or_zero();
             h[v] += m.cross(positions[b] - positions[a]);
         }
-    }
+    });
     (0..n)
+        .into_par_iter()
+        .with_min_len(8192)
         .map(|i| {
             if skip.get(i).copied().unwrap_or(false) || area[i] <= 0.0 {
                 0.0

@@ -13,7 +13,7 @@ use crate::methods::polyharmonic::polyharmonic;
 use crate::methods::short_paper::{short_paper, ShortPaperParams};
 use crate::methods::{GuideArea, Method, SolveTimings, Weighting};
 use crate::network::Network;
-use crate::operators::{cotan_mean_curvature, cotan_operators, vertex_normals, Metric};
+use crate::operators::{cotan_operators, normals_and_mean_curvature, Metric};
 use crate::tessellate::{flatten_patches, tessellate, tessellate_conformal, VERTICES_PER_AREA};
 use crate::topology::cycles::half_edge_samples;
 use crate::topology::{find_nodes, find_patches, Graph, Patch};
@@ -504,8 +504,7 @@ pub fn surface_with_progress(
     let clock = Instant::now();
     let mut mesh = mesh;
     mesh.positions = result.positions;
-    let normals = vertex_normals(&mesh.faces, &mesh.positions);
-    let mean_curvature = cotan_mean_curvature(&mesh.faces, &mesh.positions, &mesh.on_boundary);
+    let (normals, mean_curvature) = normals_and_mean_curvature(&mesh.faces, &mesh.positions, &mesh.on_boundary);
     timings.operators += clock.elapsed().as_secs_f64();
     timings.total = start.elapsed().as_secs_f64();
     let stats = Stats {

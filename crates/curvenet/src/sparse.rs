@@ -175,45 +175,48 @@ fn product_impl(a: &Csc, d: &[f64], b: &Csc, first: usize, lower: bool) -> Csc {
     let chunks: Vec<(Vec<usize>, Vec<u32>, Vec<f64>)> = (first..n)
         .collect::<Vec<_>>()
         .par_chunks(CHUNK)
-        .map(|cols| {
-            let mut acc = vec![0.0f64; m];
-            let mut mark = vec![u32::MAX; m];
-            let mut touched: Vec<u32> = Vec::new();
-            let mut counts = Vec::with_capacity(cols.len());
-            let mut rows = Vec::new();
-            let mut vals = Vec::new();
-            for &j in cols {
-                touched.clear();
-                let (bk, bv) = b.col(j);
-                for (&k, &bkj) in bk.iter().zip(bv) {
-                    let w = d[k as usize] * bkj;
-                    if w == 0.0 {
-                        continue;
-                    }
-                    let (ai, av) = a.col(k as usize);
-                    for (&i, &aik) in ai.iter().zip(av) {
-                        let i = i as usize;
-                        if i < first || (lower && i < j) {
+        // Dense accumulators per thread, reused across its chunks (marks are column ids,
+        // unique across chunks, so they need no reset).
+        .map_init(
+            || (vec![0.0f64; m], vec![u32::MAX; m]),
+            |(acc, mark), cols| {
+                let mut touched: Vec<u32> = Vec::new();
+                let mut counts = Vec::with_capacity(cols.len());
+                let mut rows = Vec::new();
+                let mut vals = Vec::new();
+                for &j in cols {
+                    touched.clear();
+                    let (bk, bv) = b.col(j);
+                    for (&k, &bkj) in bk.iter().zip(bv) {
+                        let w = d[k as usize] * bkj;
+                        if w == 0.0 {
                             continue;
                         }
-                        let r = i - first;
-                        if mark[r] != j as u32 {
-                            mark[r] = j as u32;
-                            acc[r] = 0.0;
-                            touched.push(r as u32);
+                        let (ai, av) = a.col(k as usize);
+                        for (&i, &aik) in ai.iter().zip(av) {
+                            let i = i as usize;
+                            if i < first || (lower && i < j) {
+                                continue;
+                            }
+                            let r = i - first;
+                            if mark[r] != j as u32 {
+                                mark[r] = j as u32;
+                                acc[r] = 0.0;
+                                touched.push(r as u32);
+                            }
+                            acc[r] += aik * w;
                         }
-                        acc[r] += aik * w;
+                    }
+                    touched.sort_unstable();
+                    counts.push(touched.len());
+                    for &r in &touched {
+                        rows.push(r);
+                        vals.push(acc[r as usize]);
                     }
                 }
-                touched.sort_unstable();
-                counts.push(touched.len());
-                for &r in &touched {
-                    rows.push(r);
-                    vals.push(acc[r as usize]);
-                }
-            }
-            (counts, rows, vals)
-        })
+                (counts, rows, vals)
+            },
+        )
         .collect();
     let mut out =
         Csc { nrows: m, ncols: m, col_ptr: Vec::with_capacity(m + 1), row_idx: Vec::new(), values: Vec::new() };

@@ -84,19 +84,24 @@ fn triangulate(
         )));
     }
     // Interior points on a hexagonal lattice of side `d` (equilateral triangles of edge d),
-    // away from the border: bulk loading them is much faster than inserting them one by one
-    // by refinement, which then only repairs the border zone.
+    // away from the border. The lattice's own triangles are taken as they are; only the zone
+    // between the border and the lattice region goes through the constrained Delaunay
+    // triangulation and its refinement, with the lattice region's outline as constraint edges
+    // (its inside is then an excluded hole, like the outside of the border).
     let lattice = hex_lattice(&pts, d);
-    let vertices: Vec<Point2<f64>> = pts.iter().chain(&lattice).map(|p| Point2::new(p.x, p.y)).collect();
-    let edges: Vec<[usize; 2]> = (0..n).map(|i| [i, (i + 1) % n]).collect();
-    let total = vertices.len();
-    let mut map = map;
-    let mut next_new =
-        map.iter().filter_map(|m| if let VRef::New(k) = m { Some(*k + 1) } else { None }).max().unwrap_or(0);
-    for _ in 0..lattice.len() {
-        map.push(VRef::New(next_new));
-        next_new += 1;
+    let lat = lattice_triangles(&lattice);
+    let m = lattice.points.len();
+    // CDT vertices: the border, then the lattice points on the outline (or in no triangle).
+    let outline: Vec<u32> = (0..m as u32).filter(|&v| !lat.interior[v as usize]).collect();
+    let mut cdt_of = vec![u32::MAX; m];
+    for (k, &v) in outline.iter().enumerate() {
+        cdt_of[v as usize] = (n + k) as u32;
     }
+    let vertices: Vec<Point2<f64>> =
+        pts.iter().chain(outline.iter().map(|&v| &lattice.points[v as usize])).map(|p| Point2::new(p.x, p.y)).collect();
+    let mut edges: Vec<[usize; 2]> = (0..n).map(|i| [i, (i + 1) % n]).collect();
+    edges.extend(lat.outline.iter().map(|e| [cdt_of[e[0] as usize] as usize, cdt_of[e[1] as usize] as usize]));
+    let total = vertices.len();
     let mut conflict = None;
     let cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::try_bulk_load_cdt(vertices, edges, |e| {
         conflict.get_or_insert(e);
@@ -111,12 +116,13 @@ fn triangulate(
         )));
     }
     if let Some([a, _]) = conflict {
+        let p = if a < n { pts[a] } else { lattice.points[outline[a - n] as usize] };
         return Err(Error::Topology(format!(
-            "{}: the cycle crosses itself when projected on its plane (near boundary vertex {a} at ({:.4}, {:.4})); \
+            "{}: the cycle crosses itself when projected on its plane (near ({:.4}, {:.4})); \
              the patch is too deep or twisted for a planar projection: add a curve that splits it",
             what(),
-            pts[a].x,
-            pts[a].y
+            p.x,
+            p.y
         )));
     }
     let max_area = MAX_AREA_FACTOR * d * d;
@@ -140,34 +146,144 @@ fn triangulate(
     for f in &result.excluded_faces {
         excluded[f.index()] = true;
     }
-    let positions: Vec<DVec2> = cdt.vertices().map(|v| DVec2::new(v.position().x, v.position().y)).collect();
-    let mut tris = Vec::with_capacity(cdt.num_inner_faces());
+    // Output vertices: the border, all lattice points, then the refinement's new points.
+    let mut positions: Vec<DVec2> = pts.clone();
+    positions.extend_from_slice(&lattice.points);
+    let refined = cdt.num_vertices() - total;
+    positions.extend(cdt.vertices().skip(total).map(|v| DVec2::new(v.position().x, v.position().y)));
+    let out_of = |i: usize| -> usize {
+        if i < n {
+            i
+        } else if i < total {
+            n + outline[i - n] as usize
+        } else {
+            n + m + (i - total)
+        }
+    };
+    let mut tris = Vec::with_capacity(cdt.num_inner_faces() + lat.triangles.len());
     for f in cdt.inner_faces() {
         if excluded[f.fix().index()] {
             continue;
         }
         let v = f.vertices();
-        tris.push([v[0].fix().index(), v[1].fix().index(), v[2].fix().index()]);
+        tris.push([out_of(v[0].fix().index()), out_of(v[1].fix().index()), out_of(v[2].fix().index())]);
     }
-    // Refinement vertices are appended after the input ones.
+    tris.extend(lat.triangles.iter().map(|t| t.map(|v| n + v as usize)));
+    // New vertices: the lattice points, then the refinement points some triangle uses.
+    let mut map = map;
     let mut next_new =
         map.iter().filter_map(|m| if let VRef::New(k) = m { Some(*k + 1) } else { None }).max().unwrap_or(0);
-    let mut new_of: Vec<Option<VRef>> = vec![None; positions.len()];
+    for _ in 0..m {
+        map.push(VRef::New(next_new));
+        next_new += 1;
+    }
+    let mut new_of: Vec<Option<VRef>> = vec![None; refined];
     for t in &tris {
         for &i in t {
-            if i >= total && new_of[i].is_none() {
-                new_of[i] = Some(VRef::New(next_new));
+            if i >= n + m && new_of[i - n - m].is_none() {
+                new_of[i - n - m] = Some(VRef::New(next_new));
                 next_new += 1;
             }
         }
     }
-    map.extend((total..positions.len()).map(|i| new_of[i].unwrap_or(VRef::New(u32::MAX))));
+    map.extend(new_of.into_iter().map(|r| r.unwrap_or(VRef::New(u32::MAX))));
     Ok((tris, positions, map))
+}
+
+/// Points of a hexagonal lattice with their lattice coordinates.
+struct Lattice {
+    points: Vec<DVec2>,
+    /// Point index at `row * cols + col`, `u32::MAX` where there is none. Row `k` holds the
+    /// points `x = x0 + (k odd ? d/2 : 0) + col·d`.
+    grid: Vec<u32>,
+    rows: usize,
+    cols: usize,
+}
+
+/// The lattice's own triangles (each with its three corners in the lattice,
+/// counter-clockwise), the outline of their union, and which points are inside it.
+struct LatticeTriangles {
+    triangles: Vec<[u32; 3]>,
+    /// Edges of exactly one triangle.
+    outline: Vec<[u32; 2]>,
+    /// Per point: in some triangle and on no outline edge.
+    interior: Vec<bool>,
+}
+
+/// Triangles of the hexagonal lattice whose three corners are lattice points. Each triangle
+/// lies inside the polygon the lattice was made for: its corners are at least `0.6 d` from the
+/// border, more than the circumradius `d/√3`, so no border vertex lies in it and no border
+/// edge crosses it.
+fn lattice_triangles(lat: &Lattice) -> LatticeTriangles {
+    let m = lat.points.len();
+    let at = |row: usize, col: isize| -> u32 {
+        if row >= lat.rows || col < 0 || col as usize >= lat.cols {
+            u32::MAX
+        } else {
+            lat.grid[row * lat.cols + col as usize]
+        }
+    };
+    // Neighbours of (row, col) in row + 1: left and right (odd rows are shifted by d/2).
+    let up = |row: usize, col: isize| if row % 2 == 0 { (col - 1, col) } else { (col, col + 1) };
+    // Edge use counts per point and direction: 0 east, 1 up-left, 2 up-right.
+    let mut uses = vec![0u8; 3 * m];
+    let mut triangles = Vec::new();
+    let mut in_triangle = vec![false; m];
+    for row in 0..lat.rows.saturating_sub(1) {
+        for col in 0..lat.cols as isize {
+            let a = at(row, col);
+            if a == u32::MAX {
+                continue;
+            }
+            let (ul, ur) = up(row, col);
+            let (above_l, above_r) = (at(row + 1, ul), at(row + 1, ur));
+            // "Up" triangle: a, its east neighbour b, and the point above between them.
+            let b = at(row, col + 1);
+            if b != u32::MAX && above_r != u32::MAX {
+                triangles.push([a, b, above_r]);
+                uses[3 * a as usize] += 1; // a–b
+                uses[3 * a as usize + 2] += 1; // a–apex
+                uses[3 * b as usize + 1] += 1; // b–apex
+            }
+            // "Down" triangle: a and the two points above it.
+            if above_l != u32::MAX && above_r != u32::MAX {
+                triangles.push([a, above_r, above_l]);
+                uses[3 * above_l as usize] += 1; // left–right above
+                uses[3 * a as usize + 2] += 1; // a–right
+                uses[3 * a as usize + 1] += 1; // a–left
+            }
+        }
+    }
+    for t in &triangles {
+        for &v in t {
+            in_triangle[v as usize] = true;
+        }
+    }
+    let mut interior = in_triangle;
+    let mut outline = Vec::new();
+    for row in 0..lat.rows {
+        for col in 0..lat.cols as isize {
+            let a = at(row, col);
+            if a == u32::MAX {
+                continue;
+            }
+            let (ul, ur) = up(row, col);
+            let ends = [at(row, col + 1), at(row + 1, ul), at(row + 1, ur)];
+            for (dir, &b) in ends.iter().enumerate() {
+                if b != u32::MAX && uses[3 * a as usize + dir] == 1 {
+                    outline.push([a, b]);
+                    interior[a as usize] = false;
+                    interior[b as usize] = false;
+                }
+            }
+        }
+    }
+    LatticeTriangles { triangles, outline, interior }
 }
 
 /// Points of the hexagonal lattice of side `d` inside the counter-clockwise polygon `poly`, at
 /// least `0.6 d` from its border.
-fn hex_lattice(poly: &[DVec2], d: f64) -> Vec<DVec2> {
+fn hex_lattice(poly: &[DVec2], d: f64) -> Lattice {
     let n = poly.len();
     let margin = 0.6 * d;
     let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
@@ -176,8 +292,9 @@ fn hex_lattice(poly: &[DVec2], d: f64) -> Vec<DVec2> {
         hi = hi.max(*p);
     }
     let ext = hi - lo;
+    let empty = Lattice { points: Vec::new(), grid: Vec::new(), rows: 0, cols: 0 };
     if !(ext.x > 2.0 * margin && ext.y > 2.0 * margin) || !(d > 0.0) || ext.x / d * ext.y / d > 4e8 {
-        return Vec::new();
+        return empty;
     }
     // Border edges in a grid of cells of size d, to find the nearby ones.
     let (nx, ny) = ((ext.x / d) as usize + 1, (ext.y / d) as usize + 1);
@@ -215,6 +332,8 @@ fn hex_lattice(poly: &[DVec2], d: f64) -> Vec<DVec2> {
     let mut out = Vec::new();
     let mut xs = Vec::new();
     let rows = (ext.y / row) as usize + 1;
+    let cols = (ext.x / d) as usize + 2;
+    let mut grid = vec![u32::MAX; (rows + 1) * cols];
     for k in 0..=rows {
         let y = lo.y + k as f64 * row + 0.5 * (ext.y - rows as f64 * row).max(0.0);
         // Even-odd crossings of the horizontal line with the border.
@@ -230,17 +349,20 @@ fn hex_lattice(poly: &[DVec2], d: f64) -> Vec<DVec2> {
         for pair in xs.chunks(2) {
             let [x0, x1] = [pair[0], *pair.get(1).unwrap_or(&pair[0])];
             let start = ((x0 - lo.x - shift) / d).ceil().max(0.0) as usize;
-            let mut x = lo.x + shift + start as f64 * d;
-            while x < x1 {
+            let mut col = start;
+            let mut x = lo.x + shift + col as f64 * d;
+            while x < x1 && col < cols {
                 let p = DVec2::new(x, y);
                 if x > x0 && !near_border(p) {
+                    grid[k * cols + col] = out.len() as u32;
                     out.push(p);
                 }
-                x += d;
+                col += 1;
+                x = lo.x + shift + col as f64 * d;
             }
         }
     }
-    out
+    Lattice { points: out, grid, rows: rows + 1, cols }
 }
 
 fn collect(

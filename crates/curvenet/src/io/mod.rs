@@ -112,7 +112,7 @@ impl Staged {
             let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
             body(&mut w)?;
             w.flush()?;
-            w.into_inner().map_err(|e| e.into_error())?.sync_all().ok();
+            w.into_inner().map_err(|e| e.into_error())?;
             Ok(())
         })();
         result.map_err(|e| Error::io(path, e))?;
