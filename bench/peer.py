@@ -6,8 +6,8 @@ fixed, SciPy's sparse solver underneath) on curvenet's own output mesh and const
 curvenet's whole file-to-file run (read the network, surface, write the mesh) on the same
 network; prints both and their ratio. Installs libigl, numpy and scipy from PyPI when missing.
 
-    bench/peer.py [--sizes 10000,100000] [--runs 5] [--mode fast|default] [--curvenet PATH]
-                  [--report docs/performance.md]
+    bench/peer.py [--sizes 10000,100000] [--runs 5] [--modes fast,default] [--network sphere]
+                  [--curvenet PATH] [--report docs/performance.md]
 
 With --report, the results replace the peer section of that file (after its `<!-- peer -->`
 marker).
@@ -41,7 +41,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", default="10000,100000")
     ap.add_argument("--runs", type=int, default=5)
-    ap.add_argument("--mode", choices=["fast", "default"], default="fast")
+    ap.add_argument("--modes", default="fast,default", help="comma-separated: fast, default")
     ap.add_argument("--network", default="sphere")
     ap.add_argument("--curvenet", default=os.path.join(root, "target", "release", "curvenet"))
     ap.add_argument("--report")
@@ -56,10 +56,13 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         net = os.path.join(tmp, "net.json")
         subprocess.check_call([args.curvenet, "example", args.network, "-o", net], stdout=subprocess.DEVNULL)
-        for size in [int(s) for s in args.sizes.split(",")]:
+        modes = [m for m in args.modes.split(",") if m]
+        if any(m not in ("fast", "default") for m in modes):
+            sys.exit(f"--modes: expected fast and/or default, got {args.modes}")
+        for size, mode in [(int(s), m) for s in args.sizes.split(",") for m in modes]:
             mesh, stats = os.path.join(tmp, "out.obj"), os.path.join(tmp, "stats.json")
             cmd = [args.curvenet, "surface", net, "-o", mesh, "--vertices", str(size), "--stats", stats, "-q"]
-            if args.mode == "fast":
+            if mode == "fast":
                 cmd.append("--fast")
             ours = []
             for _ in range(args.runs):
@@ -77,25 +80,27 @@ def main():
                 Z = igl.harmonic(V, F, b, bc, 2)
                 theirs.append(time.perf_counter() - t)
             assert Z.shape == V.shape
-            row = dict(vertices=V.shape[0], curve=int(s["curve_vertices"]), curvenet=statistics.median(ours),
+            row = dict(mode=mode, vertices=V.shape[0], curve=int(s["curve_vertices"]), curvenet=statistics.median(ours),
                        factor=s["timings"]["factor"], igl=statistics.median(theirs))
             row["ratio"] = row["curvenet"] / row["igl"]
             rows.append(row)
-            print(f"{row['vertices']:>8} vertices: curvenet {args.mode} file to file {row['curvenet']:.3f} s; "
+            print(f"{row['vertices']:>8} vertices: curvenet {mode} file to file {row['curvenet']:.3f} s; "
                   f"igl.harmonic(k=2) solve alone {row['igl']:.3f} s; ratio {row['ratio']:.2f}")
     if args.report:
         text = [
             "## A peer in the same run: libigl\n",
-            f"`bench/peer.py --mode {args.mode}` (Python {platform.python_version()}, libigl "
+            f"`bench/peer.py --modes {args.modes}` (Python {platform.python_version()}, libigl "
             f"{getattr(igl, '__version__', '?')}, numpy {np.__version__}). curvenet's time is its whole "
             "process, file to file (read the network, surface, write OBJ); libigl's is "
             "`igl.harmonic(V, F, b, bc, 2)` alone, on curvenet's output mesh with its curve vertices "
             f"fixed. Medians of {args.runs} runs, {args.network} network.\n",
-            "| vertices (curve) | curvenet, whole run [s] | igl.harmonic k=2, solve alone [s] | ratio |",
-            "|---|---|---|---|",
+            "| mode | vertices (curve) | curvenet, whole run [s] | igl.harmonic k=2, solve alone [s] | ratio |",
+            "|---|---|---|---|---|",
         ]
         for r in rows:
-            text.append(f"| {r['vertices']} ({r['curve']}) | {r['curvenet']:.3f} | {r['igl']:.3f} | {r['ratio']:.2f} |")
+            text.append(
+                f"| {r['mode']} | {r['vertices']} ({r['curve']}) | {r['curvenet']:.3f} | {r['igl']:.3f} | {r['ratio']:.2f} |"
+            )
         doc = open(args.report).read() if os.path.exists(args.report) else ""
         marker = "<!-- peer -->"
         head = doc.split(marker)[0] if marker in doc else doc

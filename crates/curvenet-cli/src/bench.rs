@@ -18,7 +18,7 @@ pub struct BenchArgs {
     #[arg(long, value_delimiter = ',', default_value = "10000,100000,1000000")]
     sizes: Vec<usize>,
     /// Bundled networks.
-    #[arg(long, value_delimiter = ',', default_value = "sphere,torus")]
+    #[arg(long, value_delimiter = ',', default_value = "sphere,torus,globe")]
     networks: Vec<String>,
     /// Modes: `fast` (single pass) and `default`.
     #[arg(long, value_delimiter = ',', default_value = "fast,default")]

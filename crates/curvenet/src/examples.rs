@@ -3,6 +3,7 @@
 //! | name | network | truth |
 //! |---|---|---|
 //! | `sphere` | unit sphere, 3 great circles (6 nodes, 12 segments, 8 patches) | sphere r = 1 |
+//! | `globe` | unit sphere, 8 meridians and 3 parallels (26 nodes, 32 patches; a denser network: ≈ 1k curve vertices at 10k vertices) | sphere r = 1 |
 //! | `cube` | unit sphere traced by the 12 edges of a cube (8 nodes, 12 segments, 6 patches) | sphere r = 1 |
 //! | `torus` | R = 4, r = 2: 4 meridians, outer and inner equators (8 patches) | torus |
 //! | `cylinder` | two boundary circles r = 1 at z = ±1, radial normals | cylinder r = 1 |
@@ -16,8 +17,9 @@ use crate::network::{Curve, Network};
 use std::f64::consts::{PI, TAU};
 
 /// Names and one-line descriptions of the bundled examples.
-pub const EXAMPLES: [(&str, &str); 7] = [
+pub const EXAMPLES: [(&str, &str); 8] = [
     ("sphere", "unit sphere: 3 great circles (6 nodes, 12 segments, 8 patches)"),
+    ("globe", "unit sphere: 8 meridians and 3 parallels (26 nodes, 32 patches), 1 curve vertex in 10"),
     ("cube", "unit sphere traced by the 12 edges of a cube (8 nodes, 12 segments, 6 patches)"),
     ("torus", "torus R = 4, r = 2: 4 meridians and the outer and inner equators"),
     ("cylinder", "two boundary circles (r = 1, z = ±1) with radial normals: a tube"),
@@ -54,6 +56,34 @@ fn sphere() -> Network {
             .collect(),
         snap: None,
     }
+}
+
+fn globe() -> Network {
+    // Meridians from pole to pole every 45°, parallels at 0° and ±45°: crossings on samples.
+    let at = |lat: f64, lon: f64| {
+        let p = DVec3::new(lat.cos() * lon.cos(), lat.cos() * lon.sin(), lat.sin());
+        (p, p)
+    };
+    let mut curves = Vec::new();
+    for k in 0..8 {
+        let lon = k as f64 * PI / 4.0;
+        curves.push(curve(
+            &format!("meridian {}°", k * 45),
+            false,
+            false,
+            params(-PI / 2.0, PI / 2.0, 64, false).map(|lat| at(lat, lon)),
+        ));
+    }
+    for lat_deg in [-45i32, 0, 45] {
+        let lat = (lat_deg as f64).to_radians();
+        curves.push(curve(
+            &format!("parallel {lat_deg}°"),
+            true,
+            false,
+            params(0.0, TAU, 128, true).map(|lon| at(lat, lon)),
+        ));
+    }
+    Network { curves, snap: None }
 }
 
 fn cube() -> Network {
@@ -142,6 +172,7 @@ fn saddle() -> Network {
 pub fn example(name: &str) -> Option<Network> {
     Some(match name {
         "sphere" => sphere(),
+        "globe" => globe(),
         "cube" => cube(),
         "torus" => torus(4.0, 2.0),
         "cylinder" => tube(0.0),
@@ -155,7 +186,7 @@ pub fn example(name: &str) -> Option<Network> {
 /// The analytic surface the example `name` samples, where there is one.
 pub fn example_truth(name: &str) -> Option<Truth> {
     Some(match name {
-        "sphere" | "cube" => Truth::Sphere { center: DVec3::ZERO, radius: 1.0 },
+        "sphere" | "globe" | "cube" => Truth::Sphere { center: DVec3::ZERO, radius: 1.0 },
         "torus" => Truth::Torus { major: 4.0, minor: 2.0 },
         "cylinder" => Truth::Cylinder { radius: 1.0 },
         "saddle" => Truth::Saddle,
