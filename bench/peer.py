@@ -16,6 +16,7 @@ import argparse
 import json
 import os
 import platform
+from importlib import metadata
 import statistics
 import subprocess
 import sys
@@ -33,6 +34,13 @@ def ensure(packages):
     if missing:
         print("installing " + " ".join(missing) + " from PyPI", file=sys.stderr)
         subprocess.check_call([sys.executable, "-m", "pip", "install", "--quiet", *missing])
+
+
+def _dist_version(name):
+    try:
+        return metadata.version(name)
+    except metadata.PackageNotFoundError:
+        return "?"
 
 
 def main():
@@ -90,7 +98,7 @@ def main():
         text = [
             "## A peer in the same run: libigl\n",
             f"`bench/peer.py --modes {args.modes}` (Python {platform.python_version()}, libigl "
-            f"{getattr(igl, '__version__', '?')}, numpy {np.__version__}). curvenet's time is its whole "
+            f"{_dist_version('libigl')}, numpy {np.__version__}). curvenet's time is its whole "
             "process, file to file (read the network, surface, write OBJ); libigl's is "
             "`igl.harmonic(V, F, b, bc, 2)` alone, on curvenet's output mesh with its curve vertices "
             f"fixed. Medians of {args.runs} runs, {args.network} network.\n",
