@@ -4,6 +4,7 @@ use crate::Progress;
 use clap::Args;
 use curvenet::io::write_network;
 use curvenet::metrics::{distance_to_truth, Truth};
+use curvenet::render::{render, Coloring, RenderOptions, Scene};
 use curvenet::{examples, Error, Options};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -24,6 +25,15 @@ pub fn run(a: &DemoArgs) -> Result<(), Error> {
     let progress = Progress::new(false);
     let surface = curvenet::surface_with_progress(&net, &Options::default(), &mut |s, t, d| progress.stage(s, t, d))?;
     curvenet::io::write_mesh(&mesh_path, surface.mesh_data())?;
+    let picture_path = a.out.join("sphere.png");
+    let scene = Scene::from_surface(&surface).with_network_curves(&net);
+    let picture = RenderOptions {
+        colorings: vec![Coloring::Shaded, Coloring::Curvature],
+        width: 1400,
+        height: 700,
+        ..Default::default()
+    };
+    render(&scene, &picture)?.write_png(&picture_path)?;
     let truth = Truth::Sphere { center: Default::default(), radius: 1.0 };
     let err = distance_to_truth(&surface.mesh.positions, surface.mesh.num_curve, &truth);
     let s = &surface.stats;
@@ -44,6 +54,7 @@ pub fn run(a: &DemoArgs) -> Result<(), Error> {
     out!("Wrote:");
     out!("  {}  the input network", show(&network_path));
     out!("  {}  the surface (PLY with normals, mean curvature and the curve-vertex flag)", show(&mesh_path));
+    out!("  {}  a picture: shaded, and coloured by mean curvature (1 on the unit sphere)", show(&picture_path));
     out!("Next: curvenet surface {} -o sphere.obj --vertices 50000", show(&network_path));
     Ok(())
 }

@@ -13,6 +13,7 @@ mod demo;
 mod eval;
 mod example;
 mod options;
+mod render;
 mod study;
 mod surface;
 
@@ -67,6 +68,9 @@ enum Command {
     Study(study::StudyArgs),
     /// Time file-to-file runs of the bundled networks at several sizes (docs/performance.md).
     Bench(bench::BenchArgs),
+    /// Render a mesh or a surfaced network to PNG: shading, curvature, isophotes, N* deviation.
+    #[command(after_help = render::RENDER_HELP)]
+    Render(render::RenderArgs),
 }
 
 fn main() -> ExitCode {
@@ -78,6 +82,7 @@ fn main() -> ExitCode {
         Command::Eval(a) => eval::run(&a),
         Command::Study(a) => study::run(&a),
         Command::Bench(a) => bench::run(&a),
+        Command::Render(a) => render::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -21,6 +21,11 @@ pub struct SurfaceArgs {
     /// Write run statistics (sizes and per-stage timings) as JSON.
     #[arg(long, value_name = "FILE")]
     stats: Option<PathBuf>,
+    /// Also render the surface to this PNG (see `curvenet render --help` for the picture options).
+    #[arg(long, value_name = "PNG")]
+    render: Option<PathBuf>,
+    #[command(flatten, next_help_heading = "Picture (with --render)")]
+    picture: crate::render::PictureArgs,
     /// Print nothing but errors and warnings.
     #[arg(short, long)]
     quiet: bool,
@@ -31,6 +36,13 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
     let progress = Progress::new(a.quiet);
     // Check the output names before any work, so that a typo does not cost a whole run.
     curvenet::io::check_mesh_path(&a.output)?;
+    let picture = match &a.render {
+        Some(path) => {
+            crate::render::check_png_path(path)?;
+            Some((path, a.picture.options()?))
+        }
+        None => None,
+    };
     let clock = Instant::now();
     let network = read_network(&a.input)?;
     let read = clock.elapsed().as_secs_f64();
@@ -55,8 +67,18 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
         }
         None => None,
     };
+    let staged_png = match &picture {
+        Some((path, opts)) => {
+            let scene = curvenet::render::Scene::from_surface(&surface).with_network_curves(&network);
+            Some(curvenet::render::render(&scene, opts)?.stage_png(path)?)
+        }
+        None => None,
+    };
     staged_mesh.commit()?;
     if let Some(s) = staged_stats {
+        s.commit()?;
+    }
+    if let Some(s) = staged_png {
         s.commit()?;
     }
     progress.stage("write", write, &a.output.display().to_string());

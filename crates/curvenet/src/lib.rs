@@ -22,6 +22,7 @@
 //! 7. [`solve`]: sparse Cholesky, factor once and solve many; [`sparse`]: matrix assembly.
 //! 8. [`methods`]: normal-control ([CG] eq. 1–3), biharmonic, triharmonic.
 //! 9. [`metrics`]: distances to analytic ground truth; [`examples`]: analytic networks.
+//! 10. [`render`]: PNG pictures (shading, curvature, isophotes, normal deviation, curves).
 //!
 //! [`pipeline`] runs them all: [`surface`] is the one-shot entry point.
 
@@ -38,6 +39,7 @@ pub mod network;
 pub mod operators;
 pub mod ordering;
 pub mod pipeline;
+pub mod render;
 pub mod solve;
 pub mod sparse;
 pub mod tessellate;

@@ -1,0 +1,123 @@
+//! A minimal PNG encoder (8-bit RGB, one IDAT chunk, zlib through `miniz_oxide`), per the PNG
+//! specification (ISO/IEC 15948): signature, IHDR, IDAT, IEND, each chunk with its CRC-32.
+
+/// Encodes `rgb` (`width × height × 3` bytes, rows top to bottom) as a PNG file.
+pub fn encode_rgb(width: u32, height: u32, rgb: &[u8]) -> Vec<u8> {
+    assert_eq!(rgb.len(), width as usize * height as usize * 3, "image buffer size");
+    let stride = width as usize * 3;
+    // Each scanline is prefixed with its filter type; "Sub" (1) stores each byte minus the
+    // byte of the pixel to its left, which compresses smooth renders well.
+    let mut raw = Vec::with_capacity((stride + 1) * height as usize);
+    for row in rgb.chunks_exact(stride.max(1)).take(height as usize) {
+        raw.push(1u8);
+        for (i, &b) in row.iter().enumerate() {
+            let left = if i >= 3 { row[i - 3] } else { 0 };
+            raw.push(b.wrapping_sub(left));
+        }
+    }
+    let idat = miniz_oxide::deflate::compress_to_vec_zlib(&raw, 6);
+
+    let mut out = Vec::with_capacity(idat.len() + 64);
+    out.extend_from_slice(&[0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a]);
+    let mut ihdr = Vec::with_capacity(13);
+    ihdr.extend_from_slice(&width.to_be_bytes());
+    ihdr.extend_from_slice(&height.to_be_bytes());
+    // Bit depth 8, colour type 2 (truecolour), deflate, adaptive filtering, no interlace.
+    ihdr.extend_from_slice(&[8, 2, 0, 0, 0]);
+    chunk(&mut out, b"IHDR", &ihdr);
+    chunk(&mut out, b"IDAT", &idat);
+    chunk(&mut out, b"IEND", &[]);
+    out
+}
+
+fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
+    out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+    let start = out.len();
+    out.extend_from_slice(kind);
+    out.extend_from_slice(data);
+    let crc = crc32(&out[start..]);
+    out.extend_from_slice(&crc.to_be_bytes());
+}
+
+/// CRC-32 (polynomial 0xEDB88320, reflected), as PNG chunks use.
+fn crc32(bytes: &[u8]) -> u32 {
+    static TABLE: std::sync::OnceLock<[u32; 256]> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| {
+        let mut t = [0u32; 256];
+        for (n, e) in t.iter_mut().enumerate() {
+            let mut c = n as u32;
+            for _ in 0..8 {
+                c = if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
+            }
+            *e = c;
+        }
+        t
+    });
+    let mut c = 0xFFFF_FFFFu32;
+    for &b in bytes {
+        c = table[((c ^ b as u32) & 0xff) as usize] ^ (c >> 8);
+    }
+    c ^ 0xFFFF_FFFF
+}
+
+/// Decodes a PNG written by [`encode_rgb`] back to `(width, height, rgb)`; `None` for anything
+/// else. For tests and for tools that check their own renders.
+pub fn decode_rgb(png: &[u8]) -> Option<(u32, u32, Vec<u8>)> {
+    if png.len() < 8 || png[..8] != [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a] {
+        return None;
+    }
+    let (mut pos, mut w, mut h, mut idat) = (8usize, 0u32, 0u32, Vec::new());
+    while pos + 12 <= png.len() {
+        let len = u32::from_be_bytes(png[pos..pos + 4].try_into().ok()?) as usize;
+        let kind = &png[pos + 4..pos + 8];
+        let data = png.get(pos + 8..pos + 8 + len)?;
+        match kind {
+            b"IHDR" => {
+                w = u32::from_be_bytes(data[0..4].try_into().ok()?);
+                h = u32::from_be_bytes(data[4..8].try_into().ok()?);
+                if data[8] != 8 || data[9] != 2 {
+                    return None;
+                }
+            }
+            b"IDAT" => idat.extend_from_slice(data),
+            _ => {}
+        }
+        pos += 12 + len;
+    }
+    let raw = miniz_oxide::inflate::decompress_to_vec_zlib(&idat).ok()?;
+    let stride = w as usize * 3;
+    let mut rgb = vec![0u8; stride * h as usize];
+    for y in 0..h as usize {
+        let line = raw.get(y * (stride + 1)..(y + 1) * (stride + 1))?;
+        let (filter, src) = (line[0], &line[1..]);
+        for i in 0..stride {
+            let left = if i >= 3 { rgb[y * stride + i - 3] } else { 0 };
+            let up = if y > 0 { rgb[(y - 1) * stride + i] } else { 0 };
+            rgb[y * stride + i] = match filter {
+                0 => src[i],
+                1 => src[i].wrapping_add(left),
+                2 => src[i].wrapping_add(up),
+                _ => return None,
+            };
+        }
+    }
+    Some((w, h, rgb))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crc_of_iend_is_the_known_constant() {
+        assert_eq!(crc32(b"IEND"), 0xAE42_6082);
+    }
+
+    #[test]
+    fn round_trip() {
+        let (w, h) = (7u32, 5u32);
+        let rgb: Vec<u8> = (0..w * h * 3).map(|i| (i * 37 % 251) as u8).collect();
+        let png = encode_rgb(w, h, &rgb);
+        assert_eq!(decode_rgb(&png), Some((w, h, rgb)));
+    }
+}
