@@ -12,6 +12,7 @@ mod bench;
 mod demo;
 mod eval;
 mod example;
+mod figures;
 mod options;
 mod render;
 mod study;

@@ -29,6 +29,8 @@ enum Study {
     Convergence(ConvergenceArgs),
     /// Regenerate docs/accuracy.md: [CG] Table 1 side by side, convergence, noise, cost.
     Accuracy(AccuracyArgs),
+    /// Regenerate docs/figures/*.png: every method in curvature and isophotes, [CG] Fig. 1 and 5.
+    Figures(crate::figures::FiguresArgs),
 }
 
 #[derive(Args)]
@@ -76,6 +78,7 @@ pub fn run(a: &StudyArgs) -> Result<(), Error> {
             Ok(())
         }
         Study::Accuracy(r) => accuracy_report(r),
+        Study::Figures(f) => crate::figures::run(f),
     }
 }
 

@@ -1,0 +1,130 @@
+//! `curvenet study figures`: regenerates `docs/figures/*.png`, the paper-style pictures
+//! ([CG] Fig. 1, 3–5): every method on the sphere and the torus in curvature and isophotes, the
+//! cylinder with three normal sets, and the deviation of the propagated normals.
+
+use clap::Args;
+use curvenet::examples::example;
+use curvenet::render::{render_panels, Coloring, Panel, Scene, View};
+use curvenet::{Error, Method, Network, Options, Patching};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(Args)]
+pub struct FiguresArgs {
+    /// Directory for the PNG files.
+    #[arg(long, default_value = "docs/figures")]
+    out: PathBuf,
+    /// Approximate vertex count of each surface.
+    #[arg(long, value_name = "N", default_value_t = Options::DEFAULT_VERTICES)]
+    vertices: usize,
+}
+
+/// The methods compared, as in docs/accuracy.md: the baselines with the paper's planar
+/// patching and weights, the paper's method as written, and curvenet's default.
+fn methods(vertices: usize) -> Vec<(&'static str, Options)> {
+    let planar = |method| Options {
+        method,
+        patching: Patching::Planar,
+        iterations: 0,
+        vertices: Some(vertices),
+        ..Options::default()
+    };
+    vec![
+        ("biharmonic", planar(Method::Biharmonic)),
+        ("triharmonic", planar(Method::Triharmonic)),
+        ("method (4)", planar(Method::Method4)),
+        ("[CG] normal control", Options { vertices: Some(vertices), ..Options::paper() }),
+        ("curvenet default", Options { vertices: Some(vertices), ..Options::default() }),
+    ]
+}
+
+fn network(name: &str) -> Result<Network, Error> {
+    example(name).ok_or_else(|| Error::Usage(format!("example {name} missing")))
+}
+
+fn scene(net: &Network, options: &Options) -> Result<Scene, Error> {
+    Ok(Scene::from_surface(&curvenet::surface(net, options)?).with_network_curves(net))
+}
+
+fn panel<'a>(scene: &'a Scene, coloring: Coloring, view: View, title: String, range: Option<f64>) -> Panel<'a> {
+    Panel { scene, coloring, view, title, range, stripes: 14, curves: true }
+}
+
+fn write(dir: &Path, name: &str, image: curvenet::render::Image) -> Result<(), Error> {
+    let path = dir.join(name);
+    image.write_png(&path)?;
+    out!("  {}", path.display());
+    Ok(())
+}
+
+/// One row of curvature maps (a common colour range: the default surface's) and one of
+/// isophotes, a column per method.
+fn methods_figure(dir: &Path, name: &str, net: &Network, view: View, vertices: usize) -> Result<(), Error> {
+    let methods = methods(vertices);
+    let scenes = methods.iter().map(|(_, o)| scene(net, o)).collect::<Result<Vec<_>, _>>()?;
+    let range = scenes.last().map(Scene::curvature_range);
+    let mut panels = Vec::new();
+    for ((label, _), s) in methods.iter().zip(&scenes) {
+        panels.push(panel(s, Coloring::Curvature, view, format!("{label}: H"), range));
+    }
+    for ((label, _), s) in methods.iter().zip(&scenes) {
+        panels.push(panel(s, Coloring::Isophotes, view, format!("{label}: isophotes"), None));
+    }
+    write(dir, name, render_panels(&panels, methods.len(), 2500, 1100)?)
+}
+
+pub fn run(a: &FiguresArgs) -> Result<(), Error> {
+    let start = Instant::now();
+    std::fs::create_dir_all(&a.out).map_err(|e| Error::Io { path: a.out.display().to_string(), source: e })?;
+    out!("writing figures to {}:", a.out.display());
+    let oblique = View { azimuth: 30.0, elevation: 25.0, zoom: 1.0 };
+    methods_figure(&a.out, "methods-sphere.png", &network("sphere")?, oblique, a.vertices)?;
+    methods_figure(
+        &a.out,
+        "methods-torus.png",
+        &network("torus")?,
+        View { azimuth: 30.0, elevation: 40.0, zoom: 1.0 },
+        a.vertices,
+    )?;
+
+    // [CG] Fig. 1: the same two circles with three sets of normals.
+    let side = View { azimuth: 20.0, elevation: 15.0, zoom: 1.0 };
+    let default = Options { vertices: Some(a.vertices), ..Options::default() };
+    let tubes = ["cylinder", "barrel", "bottleneck"]
+        .iter()
+        .map(|n| Ok((*n, scene(&network(n)?, &default)?)))
+        .collect::<Result<Vec<_>, Error>>()?;
+    let range = tubes.iter().map(|(_, s)| s.curvature_range()).fold(0.0, f64::max);
+    let mut panels: Vec<Panel> =
+        tubes.iter().map(|(n, s)| panel(s, Coloring::Shaded, side, n.to_string(), None)).collect();
+    panels.extend(tubes.iter().map(|(n, s)| panel(s, Coloring::Curvature, side, format!("{n}: H"), Some(range))));
+    write(&a.out, "tubes.png", render_panels(&panels, 3, 1500, 1000)?)?;
+
+    // [CG] Fig. 5: where the propagated normals N* leave the surface's own normals.
+    let sphere = network("sphere")?;
+    let torus = network("torus")?;
+    let paper = Options { vertices: Some(a.vertices), ..Options::paper() };
+    let scenes = [
+        ("sphere, [CG]", scene(&sphere, &paper)?),
+        ("sphere, default", scene(&sphere, &default)?),
+        ("torus, [CG]", scene(&torus, &paper)?),
+        ("torus, default", scene(&torus, &default)?),
+    ];
+    let panels: Vec<Panel> = scenes
+        .iter()
+        .map(|(n, s)| panel(s, Coloring::NormalDeviation, oblique, format!("{n}: angle(N*, n)"), None))
+        .collect();
+    write(&a.out, "normal-deviation.png", render_panels(&panels, 4, 2400, 650)?)?;
+
+    // The globe: many curves, shaded and isophotes.
+    let globe = network("globe")?;
+    let g = scene(&globe, &default)?;
+    let panels = [
+        panel(&g, Coloring::Shaded, oblique, "globe: 8 meridians, 3 parallels".into(), None),
+        panel(&g, Coloring::Isophotes, oblique, "globe: isophotes".into(), None),
+    ];
+    write(&a.out, "globe.png", render_panels(&panels, 2, 1400, 700)?)?;
+    out!("done in {:.1} s", start.elapsed().as_secs_f64());
+    Ok(())
+}
