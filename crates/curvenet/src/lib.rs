@@ -26,8 +26,10 @@
 //!
 //! [`pipeline`] runs them all: [`surface`] is the one-shot entry point.
 
+pub mod clock;
 pub mod conformal;
 pub mod curves;
+pub mod edit;
 pub mod error;
 pub mod examples;
 pub mod geom;

@@ -1,6 +1,7 @@
 //! The whole pipeline, network in, surface out ([CG] §3.1; DESIGN §1): validate, find nodes,
 //! fit splines, trace the cycles, pick the spacing, resample, tessellate, solve.
 
+use crate::clock::Instant;
 use crate::curves::{resample_network, CurveSpline, Resampled};
 use crate::error::{Error, Result, Warning};
 use crate::geom::DVec3;
@@ -19,7 +20,6 @@ use crate::topology::cycles::half_edge_samples;
 use crate::topology::{find_nodes, find_patches, Graph, Patch};
 use rayon::prelude::*;
 use serde::Serialize;
-use std::time::Instant;
 
 /// Options of a surfacing run. Each field maps one-to-one onto a command-line flag.
 #[derive(Clone, Debug, PartialEq)]

@@ -41,6 +41,7 @@ impl Ordering {
 const TREE_SOLVE_FROM: usize = 5000;
 
 /// Unknowns from which the numeric factorisation uses all cores.
+#[cfg_attr(not(feature = "parallel"), allow(dead_code))]
 const PARALLEL_FROM: usize = 250_000;
 
 /// The symbolic analysis and how its elimination tree splits between two threads.
@@ -235,7 +236,10 @@ fn numeric(
     let mut values = vec![0.0; symbolic.len_val()];
     // Two threads pay off for large factors only (measured: slower at 100k unknowns, 18% faster
     // at 400k, 13% at 1M).
+    #[cfg(feature = "parallel")]
     let par = if a.ncols() >= PARALLEL_FROM { Par::rayon(0) } else { Par::Seq };
+    #[cfg(not(feature = "parallel"))]
+    let par = Par::Seq;
     let mut mem = MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
         .map_err(|_| Error::Numerical(format!("{what}: out of memory for the factorisation")))?;
     symbolic

@@ -79,6 +79,17 @@ pub fn write_network(path: &Path, network: &Network) -> Result<()> {
     })
 }
 
+/// `network` as the text of a file in `format` (what [`write_network`] writes).
+pub fn network_to_string(network: &Network, format: NetworkFormat) -> String {
+    let mut buf = Vec::new();
+    let _ = match format {
+        NetworkFormat::Json => json::write(&mut buf, network),
+        NetworkFormat::Obj => obj::write(&mut buf, network),
+        NetworkFormat::Net => net::write(&mut buf, network),
+    };
+    String::from_utf8(buf).unwrap_or_default()
+}
+
 /// 1-based line and column of the end of `prefix`.
 fn line_col(prefix: &[u8]) -> (usize, usize) {
     let line = 1 + prefix.iter().filter(|&&b| b == b'\n').count();

@@ -25,6 +25,7 @@
 //! updates grow (divergence).
 
 use super::{check_finite, factor_on, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings, Weighting};
+use crate::clock::Instant;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::mesh::Mesh;
@@ -32,7 +33,6 @@ use crate::operators::{blended_mean_curvature, cotan_operators, vertex_normals, 
 use crate::solve::Cholesky;
 use crate::sparse::{product_lower, Csc};
 use faer::Mat;
-use std::time::Instant;
 
 /// Parameters of the iteration.
 #[derive(Clone, Copy, Debug)]

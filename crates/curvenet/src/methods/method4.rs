@@ -17,13 +17,13 @@
 
 use super::normal_control::{propagate, Propagation};
 use super::{check_finite, known_rows, scatter, MethodResult, SolveTimings};
+use crate::clock::Instant;
 use crate::error::Result;
 use crate::geom::DVec3;
 use crate::mesh::Mesh;
 use crate::operators::{blended_mean_curvature, Operators};
 use crate::solve::Cholesky;
 use faer::Mat;
-use std::time::Instant;
 
 /// Runs method (4) on `mesh` with the operators `ops`.
 pub fn method4(mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<MethodResult> {

@@ -25,6 +25,7 @@
 use super::{
     check_finite, factor_on, known_rows, scatter, weighted_rhs, GuideArea, MethodResult, SolveTimings, Weighting,
 };
+use crate::clock::Instant;
 use crate::error::{Error, Result};
 use crate::geom::{fmt_point, DVec3};
 use crate::mesh::Mesh;
@@ -32,7 +33,6 @@ use crate::operators::{blended_mean_curvature, mixed_areas, Operators};
 use crate::solve::Cholesky;
 use crate::sparse::product_lower;
 use faer::Mat;
-use std::time::Instant;
 
 /// Parameters of one normal-control solve.
 #[derive(Clone, Copy, Debug, Default)]

@@ -6,11 +6,11 @@
 //! `harmonic(V, F, b, bc, k)` for the cotangent Laplacian.
 
 use super::{check_finite, factor_on, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings};
+use crate::clock::Instant;
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::operators::Operators;
 use crate::sparse::product_lower;
-use std::time::Instant;
 
 /// Solves `Δᵏ V = 0` (`order` 2 or 3) for the free vertices of `mesh`.
 pub fn polyharmonic(mesh: &Mesh, ops: &Operators, order: usize, t: &mut SolveTimings) -> Result<MethodResult> {

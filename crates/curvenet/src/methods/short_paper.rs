@@ -12,12 +12,12 @@
 
 use super::normal_control::{propagate, Propagation};
 use super::{check_finite, factor_on, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings};
+use crate::clock::Instant;
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::operators::{blended_mean_curvature, Operators};
 use crate::sparse::product;
 use faer::Mat;
-use std::time::Instant;
 
 /// Parameters of the [EG] energy.
 #[derive(Clone, Copy, Debug)]

@@ -1,0 +1,56 @@
+//! Edits of a network for interactive use: turning the normals of one curve about its
+//! tangents ([CG] Fig. 1: the same two circles give a cylinder, a barrel or a bottleneck
+//! depending on how their normals tilt).
+
+use crate::error::{Error, Result};
+use crate::network::{curve_label, Network};
+
+/// `network` with the normals of curve `curve` rotated by `degrees` about the curve's unit
+/// tangent at each sample (central differences; one-sided at the ends of an open curve), by
+/// Rodrigues' formula `n' = n cos θ + (t × n) sin θ + t (t · n)(1 − cos θ)`.
+pub fn rotate_normals(network: &Network, curve: usize, degrees: f64) -> Result<Network> {
+    let Some(c) = network.curves.get(curve) else {
+        return Err(Error::Usage(format!(
+            "curve {curve} does not exist: the network has {} curves",
+            network.curves.len()
+        )));
+    };
+    if !degrees.is_finite() {
+        return Err(Error::Usage(format!("rotation angle {degrees} is not a number")));
+    }
+    let n = c.points.len();
+    if n < 2 || c.normals.len() != n {
+        return Err(Error::Input(format!(
+            "{} has too few samples to have a tangent",
+            curve_label(&network.curves, curve)
+        )));
+    }
+    let (s, co) = degrees.to_radians().sin_cos();
+    let mut out = network.clone();
+    for i in 0..n {
+        let (prev, next) =
+            if c.closed { ((i + n - 1) % n, (i + 1) % n) } else { (i.saturating_sub(1), (i + 1).min(n - 1)) };
+        let t = (c.points[next] - c.points[prev]).normalize_or_zero();
+        let v = c.normals[i];
+        out.curves[curve].normals[i] = v * co + t.cross(v) * s + t * t.dot(v) * (1.0 - co);
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rotating_a_circle_s_radial_normals_tilts_them_out_of_plane() {
+        let net = crate::examples::example("cylinder").unwrap();
+        let turned = rotate_normals(&net, 0, 30.0).unwrap();
+        for (a, b) in net.curves[0].normals.iter().zip(&turned.curves[0].normals) {
+            let angle = a.normalize().dot(b.normalize()).clamp(-1.0, 1.0).acos().to_degrees();
+            assert!((angle - 30.0).abs() < 1e-6, "{angle}");
+            assert!((b.z).abs() > 0.4, "radial normals turned about a horizontal tangent leave the plane");
+        }
+        assert_eq!(turned.curves[1], net.curves[1], "other curves untouched");
+        assert!(rotate_normals(&net, 9, 1.0).unwrap_err().to_string().contains("curve 9"));
+    }
+}

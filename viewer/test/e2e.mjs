@@ -1,0 +1,94 @@
+// End-to-end test of the viewer in headless Chromium (Debian's /usr/bin/chromium driven by
+// playwright-core): loads the page, which surfaces the sphere example in WebAssembly, waits
+// for the surface, checks the vertex count on the page against the command-line tool's count
+// for the same options, checks that the canvas shows a red (positive curvature) surface, turns
+// a curve's normals on the cylinder and checks the re-solve, and saves screenshots in
+// viewer/test/out/.
+import { chromium } from 'playwright-core';
+import http from 'node:http';
+import fs from 'node:fs';
+import path from 'node:path';
+import os from 'node:os';
+import { execFileSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const root = path.resolve(here, '..');
+const repo = path.resolve(root, '..');
+const out = path.join(here, 'out');
+fs.mkdirSync(out, { recursive: true });
+
+function fail(msg) { console.error(`FAIL: ${msg}`); process.exitCode = 1; throw new Error(msg); }
+
+// The command-line tool's vertex count for the viewer's defaults (fast, 10^4 vertices).
+const cli = path.join(repo, 'target', 'release', 'curvenet');
+const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'curvenet-e2e-'));
+execFileSync(cli, ['example', 'sphere', '-o', path.join(tmp, 'sphere.json')]);
+execFileSync(cli, ['surface', path.join(tmp, 'sphere.json'), '-o', path.join(tmp, 's.ply'), '--fast', '--vertices', '10000', '--stats', path.join(tmp, 's.json'), '-q']);
+const expected = JSON.parse(fs.readFileSync(path.join(tmp, 's.json'), 'utf8')).vertices;
+
+const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm', '.json': 'application/json' };
+const server = http.createServer((req, res) => {
+  const url = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+  const file = path.join(root, url === '/' ? 'index.html' : url);
+  if (!file.startsWith(root) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) { res.writeHead(404); res.end(); return; }
+  res.writeHead(200, { 'content-type': types[path.extname(file)] || 'application/octet-stream' });
+  fs.createReadStream(file).pipe(res);
+});
+await new Promise((r) => server.listen(0, '127.0.0.1', r));
+const url = `http://127.0.0.1:${server.address().port}/`;
+
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+    '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+});
+try {
+  const page = await browser.newPage({ viewport: { width: 1200, height: 800 } });
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  await page.goto(url);
+  await page.waitForFunction(() => +document.getElementById('stats').dataset.vertices > 0, null, { timeout: 120000 });
+  const shown = +(await page.getAttribute('#stats', 'data-vertices'));
+  console.log(`page: ${await page.textContent('#stats')}`);
+  if (shown !== expected) fail(`the page reports ${shown} vertices, the CLI ${expected}`);
+  const message = await page.textContent('#message');
+  if (message.trim()) fail(`message on the page: ${message}`);
+  // The canvas: how much of it is surface, and how much of that is red (H > 0 on a sphere).
+  const pixels = await page.evaluate(() => {
+    const gl = document.querySelector('#view canvas');
+    const c = document.createElement('canvas');
+    c.width = gl.width; c.height = gl.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(gl, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    let surface = 0, red = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (d[i] > 250 && d[i + 1] > 250 && d[i + 2] > 250) continue;
+      surface++;
+      if (d[i] > d[i + 1] + 40 && d[i] > d[i + 2] + 40) red++;
+    }
+    return { total: d.length / 4, surface, red };
+  });
+  console.log(`canvas: ${pixels.surface} of ${pixels.total} pixels are surface, ${pixels.red} red`);
+  if (pixels.surface < 0.1 * pixels.total) fail('the surface covers less than 10% of the canvas');
+  if (pixels.red < 0.8 * pixels.surface) fail('the sphere is not red in the curvature colouring');
+  await page.screenshot({ path: path.join(out, 'sphere.png') });
+
+  // The barrel experiment: the cylinder, then curve 0's normals turned by 30 degrees.
+  await page.selectOption('#example', 'cylinder');
+  await page.waitForFunction(() => document.getElementById('stats').textContent.includes('faces') && document.getElementById('curve').options.length === 2);
+  const before = await page.textContent('#stats');
+  await page.fill('#angle', '30');
+  await page.dispatchEvent('#angle', 'input');
+  await page.waitForFunction((b) => document.getElementById('stats').textContent !== b, before, { timeout: 60000 });
+  console.log(`after turning curve 0 by 30°: ${await page.textContent('#stats')}`);
+  await page.screenshot({ path: path.join(out, 'cylinder-turned.png') });
+  if (errors.length) fail(`errors in the page: ${errors.join('; ')}`);
+  console.log('viewer e2e: ok');
+} finally {
+  await browser.close();
+  server.close();
+  fs.rmSync(tmp, { recursive: true, force: true });
+}
