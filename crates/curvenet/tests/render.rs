@@ -100,6 +100,9 @@ fn bad_requests_are_errors() {
     let opts = RenderOptions { colorings: vec![Coloring::NormalDeviation], ..Default::default() };
     let e = render(&no_nstar, &opts).unwrap_err().to_string();
     assert!(e.contains("N*"), "{e}");
+    // Wide but short panels still render (the view area shrinks, nothing underflows).
+    let short = RenderOptions { width: 900, height: 64, colorings: vec![Coloring::Curvature], ..Default::default() };
+    assert_eq!(render(&s, &short).unwrap().height, 64);
     let tiny = RenderOptions { width: 10, height: 10, ..Default::default() };
     assert!(render(&s, &tiny).unwrap_err().to_string().contains("10x10"));
     assert_eq!(colormap::diverging(0.0), colormap::diverging(-0.0));

@@ -403,7 +403,7 @@ fn render_panel(p: &Panel<'_>, pw: u32, ph: u32) -> Image {
     let title_h = font::text_height(scale) + 10 * scale;
     let has_bar = matches!(p.coloring, Coloring::Curvature | Coloring::NormalDeviation);
     let bar_h = if has_bar { 12 * scale + font::text_height(scale) + 8 * scale } else { 0 };
-    let (vw, vh) = (pw as usize, (ph - title_h - bar_h).max(16) as usize);
+    let (vw, vh) = (pw as usize, ph.saturating_sub(title_h + bar_h).max(16) as usize);
     let ss = if vw * vh <= 700_000 { 3 } else { 2 };
     let (w, h) = (vw * ss, vh * ss);
     let scene = p.scene;
@@ -506,7 +506,7 @@ fn render_panel(p: &Panel<'_>, pw: u32, ph: u32) -> Image {
     let title: String = p.title.chars().take(max_chars).collect();
     font::draw_text(&mut img, (4 * scale) as i32, (5 * scale) as i32, &title, title_scale, ink);
     if has_bar {
-        let y0 = ph - bar_h + 2 * scale;
+        let y0 = ph.saturating_sub(bar_h) + 2 * scale;
         let (x0, x1) = (pw / 5, pw - pw / 5);
         let bar_px = 12 * scale - 4 * scale;
         for x in x0..x1 {
