@@ -23,13 +23,16 @@
 //! 8. [`methods`]: normal-control ([CG] eq. 1–3), biharmonic, triharmonic.
 //! 9. [`metrics`]: distances to analytic ground truth; [`examples`]: analytic networks.
 //!
-//! [`pipeline`] runs them all: [`surface`] is the one-shot entry point.
+//! [`pipeline`] runs them all: [`surface`] is the one-shot entry point; [`surfacer`] keeps the
+//! mesh and factorisations for fast re-solves with new normals; [`harmonic`] interpolates on a
+//! given mesh (libigl's `harmonic`).
 
 pub mod conformal;
 pub mod curves;
 pub mod error;
 pub mod examples;
 pub mod geom;
+pub mod harmonic;
 pub mod io;
 pub mod mesh;
 pub mod methods;
@@ -40,6 +43,7 @@ pub mod ordering;
 pub mod pipeline;
 pub mod solve;
 pub mod sparse;
+pub mod surfacer;
 pub mod tessellate;
 pub mod topology;
 
@@ -48,3 +52,4 @@ pub use methods::{GuideArea, Method, Weighting};
 pub use network::{Curve, Network};
 pub use operators::Metric;
 pub use pipeline::{surface, surface_with_progress, Options, Patching, Stats, Surface, Timings};
+pub use surfacer::Surfacer;
