@@ -57,8 +57,9 @@ def test_sphere_accuracy():
     assert e["distance"]["mean"] == pytest.approx(np.abs(r[free] - 1).mean(), rel=1e-9)
     assert e["normal_angle"]["mean"] < 0.5
     assert info["num_curve"] == int(info["curve"].sum())
-    # Curve vertices are exact.
-    assert np.abs(r[~free] - 1).max() < 1e-9
+    # Curve vertices lie on the curves' cubic splines through the samples (1.5e-8 off the
+    # great circles between samples with the example's 64 samples per circle).
+    assert np.abs(r[~free] - 1).max() < 1e-7
 
 
 def test_network_roundtrip_and_construction(tmp_path):
