@@ -24,7 +24,9 @@
 //! 9. [`metrics`]: distances to analytic ground truth; [`examples`]: analytic networks.
 //! 10. [`render`]: PNG pictures (shading, curvature, isophotes, normal deviation, curves).
 //!
-//! [`pipeline`] runs them all: [`surface`] is the one-shot entry point.
+//! [`pipeline`] runs them all: [`surface`] is the one-shot entry point; [`surfacer`] keeps the
+//! mesh and factorisations for fast re-solves with new normals; [`harmonic`] interpolates on a
+//! given mesh (libigl's `harmonic`).
 
 pub mod clock;
 pub mod conformal;
@@ -33,6 +35,7 @@ pub mod edit;
 pub mod error;
 pub mod examples;
 pub mod geom;
+pub mod harmonic;
 pub mod io;
 pub mod mesh;
 pub mod methods;
@@ -44,6 +47,7 @@ pub mod pipeline;
 pub mod render;
 pub mod solve;
 pub mod sparse;
+pub mod surfacer;
 pub mod tessellate;
 pub mod topology;
 
@@ -52,3 +56,4 @@ pub use methods::{GuideArea, Method, Weighting};
 pub use network::{Curve, Network};
 pub use operators::Metric;
 pub use pipeline::{surface, surface_with_progress, Options, Patching, Stats, Surface, Timings};
+pub use surfacer::Surfacer;

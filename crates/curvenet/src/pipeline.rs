@@ -9,7 +9,7 @@ use crate::io::MeshData;
 use crate::mesh::Mesh;
 use crate::methods::iterated::{iterate, IterationParams, Stop};
 use crate::methods::method4::method4;
-use crate::methods::normal_control::{normal_control, NormalControlParams};
+use crate::methods::normal_control::{normal_control, normal_control_cached, Factors, NormalControlParams};
 use crate::methods::polyharmonic::polyharmonic;
 use crate::methods::short_paper::{short_paper, ShortPaperParams};
 use crate::methods::{GuideArea, Method, SolveTimings, Weighting};
@@ -278,6 +278,40 @@ pub fn surface_with_progress(
     options: &Options,
     progress: &mut dyn FnMut(&str, f64, &str),
 ) -> Result<Surface> {
+    let prepared = prepare(network, options, progress)?;
+    solve_prepared(&prepared, options, progress, &mut Factors::default(), prepared.timings)
+}
+
+/// What the stages before the final solve produced: the mesh and the figures the solve and
+/// its statistics need. [`crate::surfacer::Surfacer`] keeps it between solves.
+#[derive(Clone, Debug)]
+pub(crate) struct Prepared {
+    /// The mesh the final solve runs on (curve vertices first, with their input normals).
+    pub mesh: Mesh,
+    /// The target edge length `d`.
+    pub spacing: f64,
+    /// The snapping tolerance the nodes were found with.
+    pub snap: f64,
+    /// Mean input sample spacing (soft constraints are scaled by it).
+    pub input_spacing: f64,
+    pub patches: usize,
+    pub nodes: usize,
+    pub segments: usize,
+    pub components: usize,
+    pub warnings: Vec<Warning>,
+    /// Seconds of the stages so far (`total`: their sum).
+    pub timings: Timings,
+    /// Seconds of the conformal first solve.
+    pub solve_timings: SolveTimings,
+}
+
+/// Validates, finds the nodes and patches, picks the spacing, resamples and tessellates
+/// (with the conformal first solve when `options.patching` asks for it).
+pub(crate) fn prepare(
+    network: &Network,
+    options: &Options,
+    progress: &mut dyn FnMut(&str, f64, &str),
+) -> Result<Prepared> {
     let start = Instant::now();
     let mut timings = Timings::default();
     if let Some(d) = options.spacing {
@@ -340,54 +374,6 @@ pub fn surface_with_progress(
 
     let mut st = SolveTimings::default();
     let input_spacing = net.mean_sample_spacing();
-    // The soft weight per curve vertex (see `Options::soft`); the uniform energy carries an
-    // extra 1/area factor, compensated by the mean vertex area.
-    let soft_scale = |s: f64, mean_area: f64, spacing: f64| {
-        let base = spacing / (s * input_spacing).powi(3);
-        match options.energy {
-            Weighting::Area => base,
-            Weighting::Uniform => base / mean_area,
-        }
-    };
-    let run = |mesh: &Mesh, spacing: f64, metric_positions: &[DVec3], metric: Metric, st: &mut SolveTimings| {
-        let clock = Instant::now();
-        let ops = cotan_operators(mesh, metric, metric_positions);
-        st.operators += clock.elapsed().as_secs_f64();
-        if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
-            return Err(Error::Numerical(format!("vertex {i} has zero area: degenerate triangles around it")));
-        }
-        match options.method {
-            Method::NormalControl => {
-                let mean_area = ops.mass.iter().sum::<f64>() / ops.mass.len() as f64;
-                let soft_weight = options.soft.map(|w| soft_scale(w, mean_area, spacing));
-                normal_control(
-                    mesh,
-                    &ops,
-                    &NormalControlParams {
-                        weighting: options.energy,
-                        guide_area: options.guide_area,
-                        guide_updates: options.guide_updates,
-                        soft_weight,
-                    },
-                    st,
-                )
-            }
-            Method::Biharmonic => polyharmonic(mesh, &ops, 2, st),
-            Method::Triharmonic => polyharmonic(mesh, &ops, 3, st),
-            Method::Method4 => method4(mesh, &ops, st),
-            Method::ShortPaper => {
-                let area: f64 = ops.mass.iter().sum();
-                let patch_count = mesh.face_patch.iter().max().map_or(1, |m| *m as usize + 1);
-                let s = (area / patch_count as f64).sqrt();
-                let mean_area = area / ops.mass.len() as f64;
-                let params = ShortPaperParams {
-                    omega1: options.w1 / s.powi(4),
-                    omega0: options.soft.map(|w| soft_scale(w, mean_area, spacing)),
-                };
-                short_paper(mesh, &ops, &params, st)
-            }
-        }
-    };
     // Resample and tessellate at spacing `d` with planar projections.
     let planar_stage = |d: f64, timings: &mut Timings| -> Result<(Resampled, Mesh)> {
         let clock = Instant::now();
@@ -399,7 +385,7 @@ pub fn surface_with_progress(
         Ok((res, mesh))
     };
 
-    let (mesh, mut result) = match options.patching {
+    let mesh = match options.patching {
         Patching::Planar => {
             let (res, mesh) = planar_stage(d, &mut timings)?;
             progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
@@ -408,8 +394,7 @@ pub fn surface_with_progress(
                 timings.tessellate,
                 &format!("{} vertices, {} faces", mesh.num_vertices(), mesh.faces.len()),
             );
-            let result = run(&mesh, d, &mesh.positions, Metric::Planar, &mut st)?;
-            (mesh, result)
+            mesh
         }
         Patching::Conformal => {
             // Better patching ([CG] §6): a coarse first solution (twice the spacing) on planar
@@ -451,10 +436,100 @@ pub fn surface_with_progress(
                 timings.tessellate,
                 &format!("conformal: {} vertices, {} faces", mesh.num_vertices(), mesh.faces.len()),
             );
-            let result = run(&mesh, d, &mesh.positions, Metric::Planar, &mut st)?;
-            (mesh, result)
+            mesh
         }
     };
+    timings.total = start.elapsed().as_secs_f64();
+    Ok(Prepared {
+        mesh,
+        spacing: d,
+        snap,
+        input_spacing,
+        patches: patches.len(),
+        nodes: g.nodes.len(),
+        segments: g.segments.len(),
+        components: {
+            let c = g.node_components();
+            (0..c.len()).filter(|&i| c[i] == i).count()
+        },
+        warnings,
+        timings,
+        solve_timings: st,
+    })
+}
+
+/// The final solve on a prepared mesh: the method, then the 3D iterations. `factors` holds
+/// the normal-control factorisations of earlier solves on the same mesh and options (empty:
+/// computed here and stored); `base` are the timings of the stages before (added to).
+pub(crate) fn solve_prepared(
+    prepared: &Prepared,
+    options: &Options,
+    progress: &mut dyn FnMut(&str, f64, &str),
+    factors: &mut Factors,
+    base: Timings,
+) -> Result<Surface> {
+    let start = Instant::now();
+    let mut timings = base;
+    let mut st = prepared.solve_timings;
+    let mut warnings = prepared.warnings.clone();
+    let input_spacing = prepared.input_spacing;
+    let d = prepared.spacing;
+    let mesh = &prepared.mesh;
+    // The soft weight per curve vertex (see `Options::soft`); the uniform energy carries an
+    // extra 1/area factor, compensated by the mean vertex area.
+    let soft_scale = |s: f64, mean_area: f64, spacing: f64| {
+        let base = spacing / (s * input_spacing).powi(3);
+        match options.energy {
+            Weighting::Area => base,
+            Weighting::Uniform => base / mean_area,
+        }
+    };
+    let run = |mesh: &Mesh,
+               spacing: f64,
+               metric_positions: &[DVec3],
+               metric: Metric,
+               st: &mut SolveTimings,
+               factors: &mut Factors| {
+        let clock = Instant::now();
+        let ops = cotan_operators(mesh, metric, metric_positions);
+        st.operators += clock.elapsed().as_secs_f64();
+        if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
+            return Err(Error::Numerical(format!("vertex {i} has zero area: degenerate triangles around it")));
+        }
+        match options.method {
+            Method::NormalControl => {
+                let mean_area = ops.mass.iter().sum::<f64>() / ops.mass.len() as f64;
+                let soft_weight = options.soft.map(|w| soft_scale(w, mean_area, spacing));
+                normal_control_cached(
+                    mesh,
+                    &ops,
+                    &NormalControlParams {
+                        weighting: options.energy,
+                        guide_area: options.guide_area,
+                        guide_updates: options.guide_updates,
+                        soft_weight,
+                    },
+                    st,
+                    factors,
+                )
+            }
+            Method::Biharmonic => polyharmonic(mesh, &ops, 2, st),
+            Method::Triharmonic => polyharmonic(mesh, &ops, 3, st),
+            Method::Method4 => method4(mesh, &ops, st),
+            Method::ShortPaper => {
+                let area: f64 = ops.mass.iter().sum();
+                let patch_count = mesh.face_patch.iter().max().map_or(1, |m| *m as usize + 1);
+                let s = (area / patch_count as f64).sqrt();
+                let mean_area = area / ops.mass.len() as f64;
+                let params = ShortPaperParams {
+                    omega1: options.w1 / s.powi(4),
+                    omega0: options.soft.map(|w| soft_scale(w, mean_area, spacing)),
+                };
+                short_paper(mesh, &ops, &params, st)
+            }
+        }
+    };
+    let mut result = run(mesh, d, &mesh.positions, Metric::Planar, &mut st, factors)?;
     let mut iteration_report: (Vec<f64>, Option<Stop>) = (Vec::new(), None);
     if options.iterations > 0 {
         match options.method {
@@ -471,13 +546,13 @@ pub fn surface_with_progress(
                     max_iterations: options.iterations,
                     tolerance: options.tolerance,
                     prior_scale: options.normal_prior,
-                    patch_size: (area / patches.len().max(1) as f64).sqrt(),
+                    patch_size: (area / prepared.patches.max(1) as f64).sqrt(),
                     spacing: d,
                     weighting: options.energy,
                     soft_weight: options.soft.map(|w| soft_scale(w, area / mesh.num_vertices() as f64, d)),
                     inner: options.inner_steps,
                 };
-                let (r, report) = iterate(&mesh, result, &params, &mut st)?;
+                let (r, report) = iterate(mesh, result, &params, &mut st)?;
                 result = r;
                 match report.stop {
                     Stop::Degenerate => warnings.push(Warning(format!(
@@ -502,22 +577,19 @@ pub fn surface_with_progress(
     progress("solve", st.operators + st.factor + st.solve, options.method.name());
 
     let clock = Instant::now();
-    let mut mesh = mesh;
+    let mut mesh = mesh.clone();
     mesh.positions = result.positions;
     let (normals, mean_curvature) = normals_and_mean_curvature(&mesh.faces, &mesh.positions, &mesh.on_boundary);
     timings.operators += clock.elapsed().as_secs_f64();
-    timings.total = start.elapsed().as_secs_f64();
+    timings.total = base.total + start.elapsed().as_secs_f64();
     let stats = Stats {
         vertices: mesh.num_vertices(),
         faces: mesh.faces.len(),
         curve_vertices: mesh.num_curve,
-        cycles: patches.len(),
-        components: {
-            let c = g.node_components();
-            (0..c.len()).filter(|&i| c[i] == i).count()
-        },
-        nodes: g.nodes.len(),
-        segments: g.segments.len(),
+        cycles: prepared.patches,
+        components: prepared.components,
+        nodes: prepared.nodes,
+        segments: prepared.segments,
         spacing: d,
         method: options.method.name().to_string(),
         iterations: iteration_report.0.len(),

@@ -58,9 +58,35 @@ pub(crate) struct Propagation {
     pub chol: Option<Cholesky>,
 }
 
+/// The factorisations of the normal-control systems, kept between solves on the same mesh,
+/// operators and parameters: the matrices depend on neither the curve positions nor the
+/// normals, so a solve with new curve normals costs only right-hand sides and triangular
+/// solves ([`crate::surfacer::Surfacer`]).
+#[derive(Default)]
+pub struct Factors {
+    /// `(Ls M⁻¹ Ls)_ff` of the propagation.
+    pub(crate) propagation: Option<Cholesky>,
+    /// The fit's matrix when it differs from the propagation's (open borders, uniform
+    /// weighting, soft constraints).
+    pub(crate) fit: Option<Cholesky>,
+}
+
+impl Factors {
+    /// Whether a factorisation is kept.
+    pub fn is_empty(&self) -> bool {
+        self.propagation.is_none() && self.fit.is_none()
+    }
+}
+
 /// `L² V* = 0`, `L² N* = 0` on the free vertices with the curve vertices fixed, in symmetric
-/// form `(Ls M⁻¹ Ls)_ff X_f = −(Ls M⁻¹ Ls)_fc X_c`: one factorisation, six columns.
-pub(crate) fn propagate(mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<Propagation> {
+/// form `(Ls M⁻¹ Ls)_ff X_f = −(Ls M⁻¹ Ls)_fc X_c`: one factorisation (or `cached`, that of an
+/// earlier call on the same mesh and operators), six columns.
+pub(crate) fn propagate(
+    mesh: &Mesh,
+    ops: &Operators,
+    t: &mut SolveTimings,
+    cached: Option<Cholesky>,
+) -> Result<Propagation> {
     let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
     let mut v_star = mesh.positions.clone();
     let mut n_star: Vec<DVec3> = mesh.curve_normals.clone();
@@ -68,14 +94,19 @@ pub(crate) fn propagate(mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> R
     if n == nc {
         return Ok(Propagation { v_star, n_star, chol: None });
     }
-    let clock = Instant::now();
     let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
-    let q = product_lower(&ops.ls, &inv_m, &ops.ls, nc);
-    t.operators += clock.elapsed().as_secs_f64();
-    let clock = Instant::now();
-    let chol = factor_on(mesh, &q, nc, "propagation system (L² V* = 0)")?;
-    drop(q);
-    t.factor += clock.elapsed().as_secs_f64();
+    let chol = match cached {
+        Some(c) => c,
+        None => {
+            let clock = Instant::now();
+            let q = product_lower(&ops.ls, &inv_m, &ops.ls, nc);
+            t.operators += clock.elapsed().as_secs_f64();
+            let clock = Instant::now();
+            let chol = factor_on(mesh, &q, nc, "propagation system (L² V* = 0)")?;
+            t.factor += clock.elapsed().as_secs_f64();
+            chol
+        }
+    };
     // The right-hand sides after the factorisation: less memory at its peak.
     let clock = Instant::now();
     let known = known_rows(n, nc, &[&mesh.positions, &mesh.curve_normals]);
@@ -109,8 +140,21 @@ pub fn normal_control(
     params: &NormalControlParams,
     t: &mut SolveTimings,
 ) -> Result<MethodResult> {
+    normal_control_cached(mesh, ops, params, t, &mut Factors::default())
+}
+
+/// [`normal_control`] with the factorisations of `factors` (from an earlier call with the
+/// same mesh, `ops` and `params`; the curve positions and normals may differ), computing and
+/// storing those it lacks.
+pub fn normal_control_cached(
+    mesh: &Mesh,
+    ops: &Operators,
+    params: &NormalControlParams,
+    t: &mut SolveTimings,
+    factors: &mut Factors,
+) -> Result<MethodResult> {
     let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
-    let Propagation { v_star, n_star, chol: prop } = propagate(mesh, ops, t)?;
+    let Propagation { v_star, n_star, chol: prop } = propagate(mesh, ops, t, factors.propagation.take())?;
     let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
     if n == nc {
         // No free vertex: the mesh is the curves' (patches without interior points).
@@ -133,27 +177,27 @@ pub fn normal_control(
     let known = known_rows(n, first, &[&mesh.positions]);
     let reuse =
         params.soft_weight.is_none() && params.weighting == Weighting::Area && !mesh.on_boundary.iter().any(|&b| b);
-    let own;
+    if !(reuse && prop.is_some()) && factors.fit.is_none() {
+        let mut q = product_lower(&ops.ls, &w, &ops.ls, first);
+        if let Some(omega) = params.soft_weight {
+            let mut diag = vec![0.0; n];
+            diag[..nc].iter_mut().for_each(|d| *d = omega);
+            q.add_diagonal(&diag);
+        }
+        t.operators += clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let own = factor_on(
+            mesh,
+            &q,
+            first,
+            if params.soft_weight.is_some() { "soft-constrained system" } else { "fit system (L V = −2 H N*)" },
+        )?;
+        t.factor += clock.elapsed().as_secs_f64();
+        factors.fit = Some(own);
+    }
     let chol = match (reuse, prop.as_ref()) {
         (true, Some(p)) => p,
-        _ => {
-            let mut q = product_lower(&ops.ls, &w, &ops.ls, first);
-            if let Some(omega) = params.soft_weight {
-                let mut diag = vec![0.0; n];
-                diag[..nc].iter_mut().for_each(|d| *d = omega);
-                q.add_diagonal(&diag);
-            }
-            t.operators += clock.elapsed().as_secs_f64();
-            let clock = Instant::now();
-            own = factor_on(
-                mesh,
-                &q,
-                first,
-                if params.soft_weight.is_some() { "soft-constrained system" } else { "fit system (L V = −2 H N*)" },
-            )?;
-            t.factor += clock.elapsed().as_secs_f64();
-            &own
-        }
+        _ => factors.fit.as_ref().ok_or_else(|| Error::Numerical("the fit system was not factorised".into()))?,
     };
 
     // 2–4. Guide from V*, fit, then guide from the fitted surface and fit again.
@@ -199,5 +243,6 @@ pub fn normal_control(
         check_finite(&positions, "fit")?;
         guide_positions = positions.clone();
     }
+    factors.propagation = prop;
     Ok(MethodResult { positions, propagated_normals: Some(n_star), guide_curvature: Some(h) })
 }

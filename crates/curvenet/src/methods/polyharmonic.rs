@@ -10,7 +10,8 @@ use crate::clock::Instant;
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::operators::Operators;
-use crate::sparse::product_lower;
+use crate::sparse::{product_lower, Csc};
+use faer::Mat;
 
 /// Solves `Δᵏ V = 0` (`order` 2 or 3) for the free vertices of `mesh`.
 pub fn polyharmonic(mesh: &Mesh, ops: &Operators, order: usize, t: &mut SolveTimings) -> Result<MethodResult> {
@@ -20,20 +21,8 @@ pub fn polyharmonic(mesh: &Mesh, ops: &Operators, order: usize, t: &mut SolveTim
         return Ok(MethodResult { positions, ..Default::default() });
     }
     let clock = Instant::now();
-    let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
     let known = known_rows(n, nc, &[&mesh.positions]);
-    let (q, rhs) = if order == 2 {
-        (product_lower(&ops.ls, &inv_m, &ops.ls, nc), weighted_rhs(&ops.ls, &inv_m, None, &known, nc))
-    } else {
-        // T = Ls M⁻¹ Ls; Q₃ = −Ls M⁻¹ T; rhs = −(Q₃ X̃)_f = (Ls M⁻¹ T X̃)_f.
-        let tt = crate::sparse::product(&ops.ls, &inv_m, &ops.ls, 0);
-        let neg: Vec<f64> = inv_m.iter().map(|x| -x).collect();
-        let q3 = product_lower(&ops.ls, &neg, &tt, nc);
-        let mut y = faer::Mat::<f64>::zeros(n, 3);
-        tt.sym_mul_dense(known.as_ref(), y.as_mut());
-        let rhs = weighted_rhs(&ops.ls, &inv_m, Some(&y), &faer::Mat::<f64>::zeros(n, 3), nc);
-        (q3, rhs)
-    };
+    let (q, rhs) = system(ops, order, &known, nc);
     t.operators += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
     let chol = factor_on(mesh, &q, nc, if order == 2 { "biharmonic system" } else { "triharmonic system" })?;
@@ -45,4 +34,24 @@ pub fn polyharmonic(mesh: &Mesh, ops: &Operators, order: usize, t: &mut SolveTim
     t.solve += clock.elapsed().as_secs_f64();
     check_finite(&positions, "polyharmonic solve")?;
     Ok(MethodResult { positions, ..Default::default() })
+}
+
+/// The system of `Δᵏ X = 0` (`order` 2 or 3) on the unknown rows `first..` with the rows
+/// `..first` of `known` fixed: the lower triangle of the matrix on the unknowns and the
+/// right-hand side `−(Q X̃)_f` (one column per column of `known`).
+pub(crate) fn system(ops: &Operators, order: usize, known: &Mat<f64>, first: usize) -> (Csc, Mat<f64>) {
+    let n = ops.ls.nrows;
+    let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
+    if order == 2 {
+        (product_lower(&ops.ls, &inv_m, &ops.ls, first), weighted_rhs(&ops.ls, &inv_m, None, known, first))
+    } else {
+        // T = Ls M⁻¹ Ls; Q₃ = −Ls M⁻¹ T; rhs = −(Q₃ X̃)_f = (Ls M⁻¹ T X̃)_f.
+        let tt = crate::sparse::product(&ops.ls, &inv_m, &ops.ls, 0);
+        let neg: Vec<f64> = inv_m.iter().map(|x| -x).collect();
+        let q3 = product_lower(&ops.ls, &neg, &tt, first);
+        let mut y = Mat::<f64>::zeros(n, known.ncols());
+        tt.sym_mul_dense(known.as_ref(), y.as_mut());
+        let rhs = weighted_rhs(&ops.ls, &inv_m, Some(&y), &Mat::<f64>::zeros(n, known.ncols()), first);
+        (q3, rhs)
+    }
 }

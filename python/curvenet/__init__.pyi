@@ -1,0 +1,94 @@
+"""Type stubs of curvenet (NumPy arrays: shapes in the docstrings)."""
+
+from typing import Any, Literal, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+BoolArray = npt.NDArray[np.bool_]
+ArrayLike = npt.ArrayLike
+
+Method = Literal["normal-control", "biharmonic", "triharmonic", "method4", "short-paper"]
+Preset = Literal["default", "fast", "paper"]
+
+class Network:
+    """A curve network. ``curves``: ``(points (k,3), normals (k,3), closed, boundary)``."""
+
+    def __init__(
+        self, curves: Sequence[Tuple[ArrayLike, ArrayLike, bool, bool]], snap: Optional[float] = None
+    ) -> None: ...
+    @property
+    def curves(self) -> list[Tuple[FloatArray, FloatArray, bool, bool]]: ...
+    @property
+    def snap(self) -> Optional[float]: ...
+    def write(self, path: str) -> None: ...
+    def __len__(self) -> int: ...
+
+def read_network(path: str) -> Network: ...
+def read_mesh(path: str) -> Tuple[FloatArray, IntArray]: ...
+def example(name: str) -> Network: ...
+def examples() -> list[Tuple[str, str]]: ...
+def surface(
+    network: Network,
+    method: Method = "normal-control",
+    spacing: Optional[float] = None,
+    vertices: Optional[int] = None,
+    soft: Optional[float] = None,
+    iterations: Optional[int] = None,
+    *,
+    preset: Preset = "default",
+    w1: Optional[float] = None,
+    patching: Optional[Literal["planar", "conformal"]] = None,
+    inner_steps: Optional[int] = None,
+    tolerance: Optional[float] = None,
+    normal_prior: Optional[float] = None,
+    energy: Optional[Literal["area", "uniform"]] = None,
+    guide_area: Optional[Literal["mass", "surface"]] = None,
+    guide_updates: Optional[int] = None,
+    snap: Optional[float] = None,
+) -> Tuple[FloatArray, IntArray, dict[str, Any]]:
+    """``(V (n,3) float64, F (m,3) int64, info)``."""
+
+class Surfacer:
+    def __init__(
+        self,
+        network: Network,
+        method: Method = "normal-control",
+        spacing: Optional[float] = None,
+        vertices: Optional[int] = None,
+        soft: Optional[float] = None,
+        iterations: Optional[int] = None,
+        *,
+        preset: Preset = "default",
+        w1: Optional[float] = None,
+        patching: Optional[Literal["planar", "conformal"]] = None,
+        inner_steps: Optional[int] = None,
+        tolerance: Optional[float] = None,
+        normal_prior: Optional[float] = None,
+        energy: Optional[Literal["area", "uniform"]] = None,
+        guide_area: Optional[Literal["mass", "surface"]] = None,
+        guide_updates: Optional[int] = None,
+        snap: Optional[float] = None,
+    ) -> None: ...
+    def solve(self) -> Tuple[FloatArray, IntArray, dict[str, Any]]: ...
+    def update_normals(self, curve: int, normals: ArrayLike) -> None:
+        """``normals``: (k,3), one per sample of curve ``curve``."""
+    @property
+    def network(self) -> Network: ...
+    @property
+    def is_factored(self) -> bool: ...
+
+def harmonic(V: ArrayLike, F: ArrayLike, b: ArrayLike, bc: ArrayLike, k: int) -> FloatArray:
+    """``W`` (n, d) (or (n,) for a 1-D ``bc``) with ``W[b] = bc`` and ``Δᵏ W = 0`` elsewhere."""
+
+def eval(
+    V: ArrayLike,
+    F: ArrayLike,
+    truth: Optional[str] = None,
+    *,
+    reference: Optional[Tuple[ArrayLike, ArrayLike]] = None,
+    exclude: Optional[ArrayLike] = None,
+    normals: Optional[ArrayLike] = None,
+) -> dict[str, Any]: ...
