@@ -23,8 +23,12 @@
 //! 8. [`methods`]: normal-control ([CG] eq. 1–3), biharmonic, triharmonic.
 //! 9. [`metrics`]: distances to analytic ground truth; [`examples`]: analytic networks.
 //!
+//! [`cauchy`]: a second surfacing system, the order-k Laplacians with ghost-vertex Cauchy
+//! constraints of Andrews et al. 2011 ([A11]; `--method cauchy`, `inflate`, `fit`).
+//!
 //! [`pipeline`] runs them all: [`surface`] is the one-shot entry point.
 
+pub mod cauchy;
 pub mod conformal;
 pub mod curves;
 pub mod error;
