@@ -12,6 +12,7 @@ mod bench;
 mod demo;
 mod eval;
 mod example;
+mod inflate;
 mod options;
 mod study;
 mod surface;
@@ -67,6 +68,8 @@ enum Command {
     Study(study::StudyArgs),
     /// Time file-to-file runs of the bundled networks at several sizes (docs/performance.md).
     Bench(bench::BenchArgs),
+    /// Inflate an SVG sketch into a surface (Andrews et al. 2011, §5; docs/cauchy.md).
+    Inflate(inflate::InflateArgs),
 }
 
 fn main() -> ExitCode {
@@ -78,6 +81,7 @@ fn main() -> ExitCode {
         Command::Eval(a) => eval::run(&a),
         Command::Study(a) => study::run(&a),
         Command::Bench(a) => bench::run(&a),
+        Command::Inflate(a) => inflate::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

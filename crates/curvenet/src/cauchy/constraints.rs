@@ -7,7 +7,7 @@
 //! {"curves": [{"points": [...], "normals": [...],
 //!              "kind": "cauchy",          // or "position", "inactive"; default "cauchy"
 //!              "sharpness": 45,           // degrees; a number, or one per sample
-//!              "stretch": 0.1}]}          // a length; a number, or one per sample
+//!              "stretch": 0.5}]}          // tangent magnitude × (1 + s); a number, or one per sample
 //! ```
 //!
 //! The curve normals are the orientation of the Cauchy constraints ([A11] §4.4). Per-sample
@@ -68,7 +68,7 @@ pub struct CurveAttributes {
     pub closed: bool,
     /// Sharpness per sample, radians.
     pub sharpness: Vec<f64>,
-    /// Stretch per sample, a length.
+    /// Stretch per sample, dimensionless (the tangent magnitude is multiplied by `1 + s`).
     pub stretch: Vec<f64>,
 }
 
@@ -363,40 +363,12 @@ pub fn solve_network(
             _ => mesh.positions[g.vertex as usize] - mesh.positions[g.source as usize],
         })
         .collect();
-    let mut ghosts: Vec<DVec3> = system
-        .ghosts
-        .iter()
-        .zip(&offsets)
-        .map(|(g, &off)| mesh.positions[g.vertex as usize] + g.number as f64 * off)
-        .collect();
     t.operators += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
     let f = system.factor()?;
     t.factor += clock.elapsed().as_secs_f64();
     let clock = Instant::now();
-    let mut b = system.rhs(&mesh.positions, &ghosts);
-    f.solve_in_place(&mut b);
-    let mut positions = system.scatter(&b, &mesh.positions);
-    // Centred ghosts (ours, see `docs/cauchy.md`): g₁ = v + 2e makes the tangent condition a
-    // central difference (`(g₁ − v)/2 = e`, second order instead of first); g₂ continues the
-    // parabola through v, u, g₁. `v` comes from the previous solve: a fixed-point iteration on
-    // the right-hand side only (same factorisation).
-    for _ in 0..ghost_updates {
-        for (i, g) in system.ghosts.iter().enumerate() {
-            let (u, v) = (positions[g.vertex as usize], positions[g.source as usize]);
-            let g1 = v + 2.0 * offsets[i];
-            let target = match g.number {
-                1 => g1,
-                _ => 3.0 * g1 - 3.0 * u + v,
-            };
-            // Under-relaxed for k = 2, where the plain update oscillates.
-            ghosts[i] = if order == 2 { 0.5 * (ghosts[i] + target) } else { target };
-        }
-        let mut b = system.rhs(&mesh.positions, &ghosts);
-        f.solve_in_place(&mut b);
-        positions = system.scatter(&b, &mesh.positions);
-    }
+    let positions = system.solve_with_updates(&f, &mesh.positions, &offsets, ghost_updates)?;
     t.solve += clock.elapsed().as_secs_f64();
-    super::system::check_finite(&positions)?;
     Ok(MethodResult { positions, ..Default::default() })
 }

@@ -17,8 +17,10 @@
 //! 5. [`inflate`]: SVG sketch → planar triangulation → inflated surface ([A11] §5).
 
 pub mod constraints;
+pub mod inflate;
 pub mod params;
 pub mod reduce;
+pub mod svg;
 pub mod system;
 
 pub use constraints::{CurveAttributes, Kind, NetworkAttributes};

@@ -1,6 +1,6 @@
 //! The artist parameters of a Cauchy constraint ([A11] §4.4, eq. 3): orientation, sharpness and
 //! stretch, turned into ghost vertex positions
-//! `g₁ = u + O Rᵢ (1 + s/‖u − vᵢ‖)(u − vᵢ)`.
+//! `g₁ = u + O Rᵢ (1 + s/‖u − vᵢ‖)(u − vᵢ)` (with a dimensionless stretch, see below).
 //!
 //! - `O` rotates the initial domain's normal onto the orientation `n` (the average surface
 //!   normal at `u`). When no initial normal is known (curve networks in 3D), `O` is the smallest
@@ -10,8 +10,11 @@
 //!   that the two sides rotate in opposite directions). `θ > 0` lifts the ghosts towards `+n`:
 //!   both sides fall away from the constraint, a ridge (convex towards `n`); `θ = 45°` makes a
 //!   right-angled crease or cone; `θ < 0` a valley.
-//! - `s` is a length added to the ghost edge: scaled by the inverse edge length, the effect is
-//!   independent of the mesh resolution.
+//! - `s` stretches the ghost edge. [A11] eq. 3 adds the length `s` (the factor `1 + s/‖u − vᵢ‖`),
+//!   which with its unit micro-Laplacian weight moves the ghost by `s` at any resolution. With
+//!   the consistent weight of [`super::system::MicroWeight`] the tangent's magnitude is
+//!   `‖g₁ − u‖/‖u − vᵢ‖`, so we take `s` dimensionless, `g₁ = u + O Rᵢ (1 + s)(u − vᵢ)`: the
+//!   tangent is `1 + s` times longer at any resolution (the Hermite tangent magnitude).
 //!
 //! Higher ghosts (`k = 3`) continue the line: `g_m = u + m (g₁ − u)` (zero second difference
 //! along the ghost line; [A11] leaves their parameters to separate per-order values).
@@ -29,7 +32,7 @@ pub struct CauchyParams {
     pub initial_normal: Option<DVec3>,
     /// Sharpness `θ`, radians.
     pub sharpness: f64,
-    /// Stretch `s`, a length.
+    /// Stretch `s`, dimensionless: the tangent magnitude is multiplied by `1 + s`.
     pub stretch: f64,
     /// Unit tangent of the constraint curve (`None`: an isolated point constraint).
     pub tangent: Option<DVec3>,
@@ -72,7 +75,7 @@ impl CauchyParams {
                 d = DQuat::from_axis_angle(r, self.sharpness) * d;
             }
         }
-        d * (1.0 + self.stretch / len)
+        d * (1.0 + self.stretch)
     }
 }
 

@@ -341,6 +341,39 @@ impl System {
         Ok(out)
     }
 
+    /// Solves with ghost lines `g_m = u + m·offset` (one offset per ghost, [A11] eq. 3), then
+    /// `updates` re-solves with centred ghosts (ours; `docs/cauchy.md`): `g₁ = v + 2e` turns the
+    /// tangent condition into a central difference (`(g₁ − v)/2 = e`: second order instead of
+    /// first) and `g₂ = 3g₁ − 3u + v` continues the parabola through `v, u, g₁`, with `v` from
+    /// the previous solve — a fixed-point iteration on the right-hand side only (same
+    /// factorisation), under-relaxed by ½ for `k = 2` where the plain update oscillates.
+    pub fn solve_with_updates(
+        &self,
+        f: &Factored,
+        positions: &[DVec3],
+        offsets: &[DVec3],
+        updates: usize,
+    ) -> Result<Vec<DVec3>> {
+        let mut ghosts: Vec<DVec3> =
+            self.ghosts.iter().zip(offsets).map(|(g, &o)| positions[g.vertex as usize] + g.number as f64 * o).collect();
+        let mut b = self.rhs(positions, &ghosts);
+        f.solve_in_place(&mut b);
+        let mut out = self.scatter(&b, positions);
+        for _ in 0..updates {
+            for (i, g) in self.ghosts.iter().enumerate() {
+                let (u, v) = (out[g.vertex as usize], out[g.source as usize]);
+                let g1 = v + 2.0 * offsets[i];
+                let target = if g.number == 1 { g1 } else { 3.0 * g1 - 3.0 * u + v };
+                ghosts[i] = if self.order == 2 { 0.5 * (ghosts[i] + target) } else { target };
+            }
+            let mut b = self.rhs(positions, &ghosts);
+            f.solve_in_place(&mut b);
+            out = self.scatter(&b, positions);
+        }
+        check_finite(&out)?;
+        Ok(out)
+    }
+
     /// Vertex positions from the solution `x` (`#free × 3`).
     pub fn scatter(&self, x: &Mat<f64>, positions: &[DVec3]) -> Vec<DVec3> {
         let mut out = positions.to_vec();
