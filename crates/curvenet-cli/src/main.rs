@@ -12,6 +12,7 @@ mod bench;
 mod demo;
 mod eval;
 mod example;
+mod fit;
 mod inflate;
 mod options;
 mod study;
@@ -70,6 +71,10 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Inflate an SVG sketch into a surface (Andrews et al. 2011, §5; docs/cauchy.md).
     Inflate(inflate::InflateArgs),
+    /// Reverse engineer a mesh into Cauchy constraints (Andrews et al. 2011, §6; docs/cauchy.md).
+    Fit(fit::FitArgs),
+    /// Solve a model written by `fit` again.
+    Resurface(fit::ResurfaceArgs),
 }
 
 fn main() -> ExitCode {
@@ -82,6 +87,8 @@ fn main() -> ExitCode {
         Command::Study(a) => study::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Inflate(a) => inflate::run(&a),
+        Command::Fit(a) => fit::run(&a),
+        Command::Resurface(a) => fit::run_resurface(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -297,3 +297,76 @@ fn bundled_sketches_inflate_to_domes() {
         assert!(ratio > 0.3 && ratio < 1.5, "{name}: {ratio}");
     }
 }
+
+mod fitting {
+    use curvenet::cauchy::fit::{fit, resurface, FitOptions};
+    use curvenet::geom::DVec3;
+    use std::collections::HashMap;
+
+    /// A box [0,2]×[0,1]×[0,1] with each face an n-grid (outward, counter-clockwise).
+    fn boxed(n: i64) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        let mut index: HashMap<[i64; 3], u32> = HashMap::new();
+        let mut pos = Vec::new();
+        let mut faces = Vec::new();
+        let mut id = |c: [i64; 3], pos: &mut Vec<DVec3>| {
+            *index.entry(c).or_insert_with(|| {
+                pos.push(DVec3::new(2.0 * c[0] as f64 / n as f64, c[1] as f64 / n as f64, c[2] as f64 / n as f64));
+                (pos.len() - 1) as u32
+            })
+        };
+        for axis in 0..3 {
+            for side in [0, n] {
+                let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+                for i in 0..n {
+                    for j in 0..n {
+                        let c = |di: i64, dj: i64| {
+                            let mut v = [0i64; 3];
+                            v[axis] = side;
+                            v[a] = i + di;
+                            v[b] = j + dj;
+                            v
+                        };
+                        let q = [c(0, 0), c(1, 0), c(1, 1), c(0, 1)].map(|v| id(v, &mut pos));
+                        let t = if side == n {
+                            [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
+                        } else {
+                            [[q[0], q[2], q[1]], [q[0], q[3], q[2]]]
+                        };
+                        faces.extend(t);
+                    }
+                }
+            }
+        }
+        (pos, faces)
+    }
+
+    #[test]
+    fn a_box_is_reproduced_from_its_edges() {
+        let (p, f) = boxed(8);
+        let (model, out, report) = fit(&p, &f, &FitOptions::default()).unwrap();
+        eprintln!("box: {} features, max {:.2e}", report.feature_vertices, report.max_distance);
+        assert!(report.max_distance < 1e-8 * report.diagonal, "{report:?}");
+        let again = resurface(&model).unwrap();
+        assert!(again.iter().zip(&out).all(|(a, b)| a.distance(*b) < 1e-9));
+    }
+
+    #[test]
+    fn fandisk_refit_is_within_one_percent_of_the_diagonal() {
+        let path = std::path::Path::new("/work/shared/data/fandisk.off");
+        if !path.exists() {
+            eprintln!("skipped: {} is not on this machine", path.display());
+            return;
+        }
+        let m = curvenet::io::read_mesh(path).unwrap();
+        for order in [2, 3] {
+            let (_, _, r) = fit(&m.positions, &m.faces, &FitOptions { order, ..Default::default() }).unwrap();
+            let rel = r.rms_distance / r.diagonal;
+            eprintln!(
+                "fandisk k={order}: RMS {:.3}% of the diagonal, max {:.3}%",
+                100.0 * rel,
+                100.0 * r.max_distance / r.diagonal
+            );
+            assert!(rel <= 0.01, "{r:?}");
+        }
+    }
+}

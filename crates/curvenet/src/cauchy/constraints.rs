@@ -146,6 +146,12 @@ impl NetworkAttributes {
                 .map(f64::to_radians)
                 .collect();
             let stretch = number_or_list(c.get("stretch"), n, "stretch", ci, source)?;
+            if let Some(i) = stretch.iter().position(|&s| s <= -1.0) {
+                return Err(Error::Input(format!(
+                    "{source}: curve {ci}: \"stretch\" {} at sample {i} is ≤ −1 (the tangent would vanish or flip)",
+                    stretch[i]
+                )));
+            }
             let closed = c.get("closed").and_then(Value::as_bool).unwrap_or(false);
             out.push(CurveAttributes { kind, points, closed, sharpness, stretch });
         }

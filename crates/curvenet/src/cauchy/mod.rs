@@ -14,9 +14,11 @@
 //!    JSON, and the solve of a curve network tessellated by the pipeline (`--method cauchy`).
 //! 4. [`reduce`]: the ghost vertex basis ([A11] §6.2, eq. 4–5) for re-solves without
 //!    re-factorising.
-//! 5. [`inflate`]: SVG sketch → planar triangulation → inflated surface ([A11] §5).
+//! 5. [`inflate`] ([`svg`]): SVG sketch → planar triangulation → inflated surface ([A11] §5).
+//! 6. [`fit`]: reverse engineering a mesh into Cauchy constraints ([A11] §6).
 
 pub mod constraints;
+pub mod fit;
 pub mod inflate;
 pub mod params;
 pub mod reduce;

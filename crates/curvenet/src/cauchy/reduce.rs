@@ -74,3 +74,92 @@ impl GhostBasis {
         }
     }
 }
+
+/// Timings of [`bench`]: a fresh factor-and-solve against re-solves through the ghost basis.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct ResolveBench {
+    pub unknowns: usize,
+    pub ghosts: usize,
+    /// Best of `reps` fresh LU factorisations and solves.
+    pub factor_and_solve: f64,
+    /// Building the basis (one solve per ghost, three for `K`).
+    pub basis: f64,
+    /// `K + W G` for all ghosts moved (best of `reps`).
+    pub full_update: f64,
+    /// `x += W[:, J] ΔG` for the ghosts of the `moved` constraint vertices (best of `reps`).
+    pub partial_update: f64,
+    pub partial_ghosts: usize,
+    /// Largest difference between the basis and a direct solve for the moved ghosts.
+    pub max_difference: f64,
+}
+
+/// Times a fresh factor-and-solve of `system` against the ghost basis re-solves ([A11] §6.2):
+/// every ghost moved by a pseudo-random offset of `scale`, and the ghosts of the first
+/// `moved_vertices` Cauchy vertices only.
+pub fn bench(
+    system: &System,
+    positions: &[DVec3],
+    ghosts: &[DVec3],
+    scale: f64,
+    moved_vertices: usize,
+    reps: usize,
+) -> Result<ResolveBench> {
+    use std::time::Instant;
+    let reps = reps.max(1);
+    let mut best = f64::INFINITY;
+    let mut f = None;
+    for _ in 0..reps {
+        let t = Instant::now();
+        let fac = system.factor()?;
+        let mut b = system.rhs(positions, ghosts);
+        fac.solve_in_place(&mut b);
+        best = best.min(t.elapsed().as_secs_f64());
+        f = Some(fac);
+    }
+    let f = f.expect("reps ≥ 1");
+    let t = Instant::now();
+    let basis = GhostBasis::new(system, &f, positions)?;
+    let basis_time = t.elapsed().as_secs_f64();
+    let mut rng = crate::network::Rng::new(7);
+    let moved: Vec<DVec3> = ghosts.iter().map(|g| *g + scale * rng.gaussian3()).collect();
+    let mut full = f64::INFINITY;
+    let mut x = Mat::<f64>::zeros(0, 0);
+    for _ in 0..reps {
+        let t = Instant::now();
+        x = basis.evaluate(&moved);
+        full = full.min(t.elapsed().as_secs_f64());
+    }
+    let mut direct = system.rhs(positions, &moved);
+    f.solve_in_place(&mut direct);
+    let mut diff: f64 = 0.0;
+    for r in 0..x.nrows() {
+        for c in 0..3 {
+            diff = diff.max((x[(r, c)] - direct[(r, c)]).abs());
+        }
+    }
+    // Partial: the ghosts of the first few Cauchy vertices.
+    let mut vertices: Vec<u32> = system.ghosts.iter().map(|g| g.vertex).collect();
+    vertices.dedup();
+    vertices.truncate(moved_vertices);
+    let ids: Vec<u32> =
+        (0..system.ghosts.len() as u32).filter(|&j| vertices.contains(&system.ghosts[j as usize].vertex)).collect();
+    let delta: Vec<DVec3> = ids.iter().map(|&j| moved[j as usize] - ghosts[j as usize]).collect();
+    let base = basis.evaluate(ghosts);
+    let mut partial = f64::INFINITY;
+    for _ in 0..reps {
+        let mut y = base.clone();
+        let t = Instant::now();
+        basis.update(&mut y, &ids, &delta);
+        partial = partial.min(t.elapsed().as_secs_f64());
+    }
+    Ok(ResolveBench {
+        unknowns: system.num_free(),
+        ghosts: system.ghosts.len(),
+        factor_and_solve: best,
+        basis: basis_time,
+        full_update: full,
+        partial_update: partial,
+        partial_ghosts: ids.len(),
+        max_difference: diff,
+    })
+}
