@@ -24,6 +24,14 @@ pub struct FitArgs {
     /// Fit the ghost vertices by least squares (point to point, complete setup).
     #[arg(long)]
     optimize: bool,
+    /// Smooth meshes: the feature vertices are the fraction F of vertices with the most extreme
+    /// mean curvature (crests and troughs) instead of the dihedral-angle edges.
+    #[arg(long, value_name = "F")]
+    curvature: Option<f64>,
+    /// Greedy reduction of the feature curves until the largest error is below T × the mesh's
+    /// largest extent / 5 ([A11] §6.1 uses 0.1).
+    #[arg(long, value_name = "T")]
+    reduce: Option<f64>,
     /// Also write the re-surfaced mesh.
     #[arg(long, value_name = "MESH")]
     surface: Option<PathBuf>,
@@ -67,12 +75,21 @@ pub fn run(a: &FitArgs) -> Result<(), Error> {
         check_mesh_path(s)?;
     }
     let mesh = read_mesh(&a.input)?;
-    let opts = FitOptions { order: a.order, angle: a.angle, optimize: a.optimize };
+    let opts = FitOptions {
+        order: a.order,
+        angle: a.angle,
+        optimize: a.optimize,
+        curvature_fraction: a.curvature,
+        reduce: a.reduce,
+    };
     let (model, out, report) = fit(&mesh.positions, &mesh.faces, &opts)?;
     let json = serde_json::to_string(&model).map_err(|e| Error::Usage(e.to_string()))?;
     write_text(&a.output, &json)?;
     if let Some(s) = &a.surface {
         write(s, &out, &mesh.faces)?;
+    }
+    if !a.quiet && a.reduce.is_some() {
+        out!("greedy reduction: {} of {} feature curves kept", report.curves_kept, report.curves);
     }
     if !a.quiet {
         out!(

@@ -125,6 +125,9 @@ pub fn options(a: &SolveArgs) -> Options {
             vertices: o.vertices,
             soft: o.soft,
             snap: o.snap,
+            order: o.order,
+            // [A11]'s own ghosts for --method cauchy.
+            ghost_updates: 0,
             ..Options::paper()
         };
     }

@@ -368,5 +368,14 @@ mod fitting {
             );
             assert!(rel <= 0.01, "{r:?}");
         }
+        let bumpy = std::path::Path::new("/work/shared/data/bumpy-cube.obj");
+        if bumpy.exists() {
+            let m = curvenet::io::read_mesh(bumpy).unwrap();
+            let o = FitOptions { order: 3, curvature_fraction: Some(0.1), ..Default::default() };
+            let (_, _, r) = fit(&m.positions, &m.faces, &o).unwrap();
+            let rel = r.rms_distance / r.diagonal;
+            eprintln!("bumpy-cube k=3, 10% curvature features: RMS {:.3}% of the diagonal", 100.0 * rel);
+            assert!(rel <= 0.01, "{r:?}");
+        }
     }
 }

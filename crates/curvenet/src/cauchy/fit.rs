@@ -33,11 +33,21 @@ pub struct FitOptions {
     pub angle: f64,
     /// Fit the ghosts by least squares (point to point, complete setup).
     pub optimize: bool,
+    /// For smooth meshes: when `Some(f)`, the feature vertices are instead the fraction `f` of
+    /// vertices whose signed mean curvature lies farthest from the median — the crests (ridges)
+    /// and troughs (valleys) of the surface, a cheap stand-in for [OBS04]'s ridge/valley lines.
+    pub curvature_fraction: Option<f64>,
+    /// Greedy reduction of the feature curves ([A11] §6.1): when `Some(t)`, start from the
+    /// border curves and the largest feature curve and add, one at a time, the curve nearest to
+    /// the worst vertex until the largest point-to-point error is below `t` times the mesh's
+    /// largest extent divided by 5 ([A11]: 0.1 for a mesh scaled into a 5×5×5 box). A "curve"
+    /// is a connected component of feature vertices.
+    pub reduce: Option<f64>,
 }
 
 impl Default for FitOptions {
     fn default() -> Self {
-        FitOptions { order: 2, angle: 30.0, optimize: false }
+        FitOptions { order: 2, angle: 30.0, optimize: false, curvature_fraction: None, reduce: None }
     }
 }
 
@@ -67,6 +77,9 @@ pub struct FitReport {
     pub rms_distance: f64,
     pub diagonal: f64,
     pub seconds: f64,
+    /// Feature curves (connected components) found, and kept by the greedy reduction.
+    pub curves: usize,
+    pub curves_kept: usize,
 }
 
 fn face_normal(p: &[DVec3], f: [u32; 3]) -> DVec3 {
@@ -104,6 +117,31 @@ pub fn feature_vertices(positions: &[DVec3], faces: &[[u32; 3]], angle: f64) -> 
     out
 }
 
+/// The fraction `f` of vertices whose signed mean curvature is farthest from the median, plus
+/// the vertices of open borders.
+pub fn curvature_features(positions: &[DVec3], faces: &[[u32; 3]], f: f64) -> Vec<bool> {
+    let n = positions.len();
+    let (_, h) = crate::operators::normals_and_mean_curvature(faces, positions, &vec![false; n]);
+    let mut sorted: Vec<f64> = h.iter().copied().filter(|x| x.is_finite()).collect();
+    sorted.sort_by(f64::total_cmp);
+    let median = sorted.get(sorted.len() / 2).copied().unwrap_or(0.0);
+    let mut dev: Vec<f64> = h.iter().map(|x| (x - median).abs()).collect();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| dev[b].total_cmp(&dev[a]));
+    let keep = ((f * n as f64).round() as usize).clamp(1, n);
+    let mut out = vec![false; n];
+    for &i in &order[..keep] {
+        out[i] = true;
+    }
+    dev.clear();
+    // Open borders stay constrained.
+    let border = feature_vertices(positions, faces, 180.0);
+    for i in 0..n {
+        out[i] |= border[i];
+    }
+    out
+}
+
 fn stencil_of(positions: &[DVec3], faces: &[[u32; 3]]) -> Result<Stencil> {
     let mut mesh = Mesh::default();
     mesh.positions = positions.to_vec();
@@ -123,7 +161,20 @@ pub fn fit(positions: &[DVec3], faces: &[[u32; 3]], o: &FitOptions) -> Result<(C
         return Err(Error::Usage(format!("order {} is not 1, 2 or 3", o.order)));
     }
     let n = positions.len();
-    let feature = feature_vertices(positions, faces, o.angle);
+    let feature = match o.curvature_fraction {
+        None => feature_vertices(positions, faces, o.angle),
+        Some(f) => {
+            if !(f > 0.0 && f < 1.0) {
+                return Err(Error::Usage(format!("curvature fraction {f} is not in (0, 1)")));
+            }
+            curvature_features(positions, faces, f)
+        }
+    };
+    let mut feature = feature;
+    let (curves, curves_kept) = match o.reduce {
+        Some(t) => greedy_reduction(positions, faces, &mut feature, o.order, t)?,
+        None => (0, 0),
+    };
     let nfeat = feature.iter().filter(|&&f| f).count();
     if nfeat == 0 {
         return Err(Error::Input(format!(
@@ -134,36 +185,7 @@ pub fn fit(positions: &[DVec3], faces: &[[u32; 3]], o: &FitOptions) -> Result<(C
     let roles: Vec<Role> = feature.iter().map(|&f| if f { Role::Cauchy } else { Role::Free }).collect();
     let stencil = stencil_of(positions, faces)?;
     let system = System::build(&stencil, &roles, o.order, MicroWeight::Consistent)?;
-    // Per-side orientation: the normal of the faces around edge (u, v).
-    let mut side: HashMap<(u32, u32), DVec3> = HashMap::new();
-    for f in faces {
-        let nf = face_normal(positions, *f);
-        for k in 0..3 {
-            for j in 1..3 {
-                let (u, v) = (f[k], f[(k + j) % 3]);
-                if feature[u as usize] && !feature[v as usize] {
-                    *side.entry((u, v)).or_insert(DVec3::ZERO) += nf;
-                }
-            }
-        }
-    }
-    let naive: Vec<DVec3> = system
-        .ghosts
-        .iter()
-        .map(|g| {
-            let (u, v) = (positions[g.vertex as usize], positions[g.source as usize]);
-            let e = u - v;
-            let nrm = side.get(&(g.vertex, g.source)).copied().unwrap_or(DVec3::ZERO).normalize_or_zero();
-            let t = e - e.dot(nrm) * nrm;
-            let t = if t.length() > 1e-12 * e.length() { t.normalize() * e.length() } else { e };
-            let g1 = v + 2.0 * t;
-            if g.number == 1 {
-                g1
-            } else {
-                3.0 * g1 - 3.0 * u + v
-            }
-        })
-        .collect();
+    let naive = naive_ghosts(&system, positions, faces, &feature);
     let f = system.factor()?;
     let ghosts = if o.optimize && !system.ghosts.is_empty() {
         let basis = GhostBasis::new(&system, &f, positions)?;
@@ -185,6 +207,8 @@ pub fn fit(positions: &[DVec3], faces: &[[u32; 3]], o: &FitOptions) -> Result<(C
         rms_distance: (d.iter().map(|x| x * x).sum::<f64>() / n as f64).sqrt(),
         diagonal,
         seconds: start.elapsed().as_secs_f64(),
+        curves,
+        curves_kept,
     };
     let model = CauchyModel {
         order: o.order,
@@ -199,6 +223,128 @@ pub fn fit(positions: &[DVec3], faces: &[[u32; 3]], o: &FitOptions) -> Result<(C
             .collect(),
     };
     Ok((model, out, report))
+}
+
+/// The naive ghosts of the module docs for the Cauchy vertices `feature`.
+fn naive_ghosts(system: &System, positions: &[DVec3], faces: &[[u32; 3]], feature: &[bool]) -> Vec<DVec3> {
+    let mut side: HashMap<(u32, u32), DVec3> = HashMap::new();
+    for f in faces {
+        let nf = face_normal(positions, *f);
+        for k in 0..3 {
+            for j in 1..3 {
+                let (u, v) = (f[k], f[(k + j) % 3]);
+                if feature[u as usize] && !feature[v as usize] {
+                    *side.entry((u, v)).or_insert(DVec3::ZERO) += nf;
+                }
+            }
+        }
+    }
+    system
+        .ghosts
+        .iter()
+        .map(|g| {
+            let (u, v) = (positions[g.vertex as usize], positions[g.source as usize]);
+            let e = u - v;
+            let nrm = side.get(&(g.vertex, g.source)).copied().unwrap_or(DVec3::ZERO).normalize_or_zero();
+            let t = e - e.dot(nrm) * nrm;
+            let t = if t.length() > 1e-12 * e.length() { t.normalize() * e.length() } else { e };
+            let g1 = v + 2.0 * t;
+            if g.number == 1 {
+                g1
+            } else {
+                3.0 * g1 - 3.0 * u + v
+            }
+        })
+        .collect()
+}
+
+/// [A11] §6.1, greedy: keeps in `feature` only the curves the reduction selects. Returns the
+/// numbers of curves found and kept.
+fn greedy_reduction(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    feature: &mut [bool],
+    order: usize,
+    threshold: f64,
+) -> Result<(usize, usize)> {
+    let n = positions.len();
+    // Components of the feature vertices along mesh edges (union-find).
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn root(p: &mut [u32], mut i: u32) -> u32 {
+        while p[i as usize] != i {
+            p[i as usize] = p[p[i as usize] as usize];
+            i = p[i as usize];
+        }
+        i
+    }
+    for f in faces {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            if feature[a as usize] && feature[b as usize] {
+                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                parent[ra as usize] = rb;
+            }
+        }
+    }
+    let mut comp_of: HashMap<u32, usize> = HashMap::new();
+    let mut comps: Vec<Vec<u32>> = Vec::new();
+    for v in 0..n as u32 {
+        if feature[v as usize] {
+            let r = root(&mut parent, v);
+            let c = *comp_of.entry(r).or_insert_with(|| {
+                comps.push(Vec::new());
+                comps.len() - 1
+            });
+            comps[c].push(v);
+        }
+    }
+    if comps.is_empty() {
+        return Ok((0, 0));
+    }
+    let border = feature_vertices(positions, faces, 180.0);
+    let mut active: Vec<bool> = comps.iter().map(|c| c.iter().any(|&v| border[v as usize])).collect();
+    let largest = (0..comps.len()).max_by_key(|&c| comps[c].len()).unwrap_or(0);
+    active[largest] = true;
+    let bb = crate::geom::Aabb::of(positions.iter().copied());
+    let extent = (bb.max - bb.min).max_element();
+    let tol = threshold * extent / 5.0;
+    let stencil = stencil_of(positions, faces)?;
+    loop {
+        let current: Vec<bool> = {
+            let mut f = vec![false; n];
+            for (c, verts) in comps.iter().enumerate() {
+                if active[c] {
+                    for &v in verts {
+                        f[v as usize] = true;
+                    }
+                }
+            }
+            f
+        };
+        let roles: Vec<Role> = current.iter().map(|&f| if f { Role::Cauchy } else { Role::Free }).collect();
+        let system = System::build(&stencil, &roles, order, MicroWeight::Consistent)?;
+        let ghosts = naive_ghosts(&system, positions, faces, &current);
+        let out = system.solve(positions, &ghosts)?;
+        let (worst, err) =
+            (0..n).map(|i| (i, out[i].distance(positions[i]))).max_by(|a, b| a.1.total_cmp(&b.1)).unwrap_or((0, 0.0));
+        let inactive: Vec<usize> = (0..comps.len()).filter(|&c| !active[c]).collect();
+        if err < tol || inactive.is_empty() {
+            feature.copy_from_slice(&current);
+            return Ok((comps.len(), active.iter().filter(|&&a| a).count()));
+        }
+        // The inactive curve nearest to the worst vertex.
+        let p = positions[worst];
+        let next = inactive
+            .into_iter()
+            .min_by(|&a, &b| {
+                let d = |c: usize| {
+                    comps[c].iter().map(|&v| positions[v as usize].distance(p)).fold(f64::INFINITY, f64::min)
+                };
+                d(a).total_cmp(&d(b))
+            })
+            .expect("non-empty");
+        active[next] = true;
+    }
 }
 
 /// Point-to-point least squares over all ghost coordinates ([A11] §6.2, complete setup):
