@@ -249,6 +249,35 @@ mod grid {
     }
 
     #[test]
+    fn ghost_basis_matches_direct_solves() {
+        // [A11] eq. 4–5: K + W G equals a solve with the ghosts G, for any G.
+        let n = 8;
+        let m = 2 * n + 1;
+        let (mesh, stencil) = grid(n);
+        let mut roles = vec![Role::Free; m * m];
+        for k in 0..m * m {
+            let p = mesh.positions[k];
+            if (p.x.abs() - 1.0).abs() < 1e-12 || (p.y.abs() - 1.0).abs() < 1e-12 || p.x.abs() < 1e-12 {
+                roles[k] = Role::Cauchy;
+            }
+        }
+        for order in [2, 3] {
+            let system = System::build(&stencil, &roles, order, MicroWeight::Consistent).unwrap();
+            let f = system.factor().unwrap();
+            let basis = curvenet::cauchy::GhostBasis::new(&system, &f, &mesh.positions).unwrap();
+            let ghosts: Vec<DVec3> = (0..system.ghosts.len())
+                .map(|i| DVec3::new((i as f64 * 0.37).sin(), (i as f64 * 0.11).cos(), 0.01 * i as f64))
+                .collect();
+            let x = basis.evaluate(&ghosts);
+            let direct = system.solve(&mesh.positions, &ghosts).unwrap();
+            for (r, &v) in system.free.iter().enumerate() {
+                let b = DVec3::new(x[(r, 0)], x[(r, 1)], x[(r, 2)]);
+                assert!(b.distance(direct[v as usize]) < 1e-9, "order {order}: {b} vs {}", direct[v as usize]);
+            }
+        }
+    }
+
+    #[test]
     fn isolated_point_constraint_gives_a_cone() {
         let n = 16;
         let m = 2 * n + 1;
@@ -368,6 +397,12 @@ mod fitting {
             );
             assert!(rel <= 0.01, "{r:?}");
         }
+        // The least-squares fit of the ghosts (complete setup, point to point) improves on the
+        // naive guess.
+        let (_, _, naive) = fit(&m.positions, &m.faces, &FitOptions::default()).unwrap();
+        let (_, _, fitted) = fit(&m.positions, &m.faces, &FitOptions { optimize: true, ..Default::default() }).unwrap();
+        eprintln!("fandisk k=2: RMS naive {:.3e}, fitted {:.3e}", naive.rms_distance, fitted.rms_distance);
+        assert!(fitted.rms_distance < naive.rms_distance);
         let bumpy = std::path::Path::new("/work/shared/data/bumpy-cube.obj");
         if bumpy.exists() {
             let m = curvenet::io::read_mesh(bumpy).unwrap();

@@ -75,7 +75,7 @@ impl GhostBasis {
     }
 }
 
-/// Timings of [`bench`]: a fresh factor-and-solve against re-solves through the ghost basis.
+/// Timings of [`bench()`]: a fresh factor-and-solve against re-solves through the ghost basis.
 #[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct ResolveBench {
     pub unknowns: usize,
