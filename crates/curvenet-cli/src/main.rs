@@ -13,6 +13,8 @@ mod demo;
 mod eval;
 mod example;
 mod figures;
+mod fit;
+mod inflate;
 mod options;
 mod render;
 mod study;
@@ -72,6 +74,12 @@ enum Command {
     /// Render a mesh or a surfaced network to PNG: shading, curvature, isophotes, N* deviation.
     #[command(after_help = render::RENDER_HELP)]
     Render(render::RenderArgs),
+    /// Inflate an SVG sketch into a surface (Andrews et al. 2011, §5; docs/cauchy.md).
+    Inflate(inflate::InflateArgs),
+    /// Reverse engineer a mesh into Cauchy constraints (Andrews et al. 2011, §6; docs/cauchy.md).
+    Fit(fit::FitArgs),
+    /// Solve a model written by `fit` again.
+    Resurface(fit::ResurfaceArgs),
 }
 
 fn main() -> ExitCode {
@@ -84,6 +92,9 @@ fn main() -> ExitCode {
         Command::Study(a) => study::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Render(a) => render::run(&a),
+        Command::Inflate(a) => inflate::run(&a),
+        Command::Fit(a) => fit::run(&a),
+        Command::Resurface(a) => fit::run_resurface(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

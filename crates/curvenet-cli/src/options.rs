@@ -16,6 +16,9 @@ pub enum MethodArg {
     Method4,
     /// The short paper's energy: ‖Δ²V‖² + w1 ‖ΔV + 2H n*‖² (+ soft).
     ShortPaper,
+    /// Andrews et al. 2011: Δᵏ V = 0 (--order) with ghost-vertex Cauchy constraints on the curves
+    /// (per-curve kind/sharpness/stretch in the JSON; docs/cauchy.md).
+    Cauchy,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -94,6 +97,12 @@ pub struct SolveArgs {
     /// else 1e-3 × its bounding-box diagonal].
     #[arg(long, value_name = "S")]
     pub snap: Option<f64>,
+    /// Laplacian order of --method cauchy (1, 2 or 3).
+    #[arg(long, value_name = "K", default_value_t = 2)]
+    pub order: usize,
+    /// Re-solves of --method cauchy with centred ghost vertices (0: the paper's ghosts).
+    #[arg(long, value_name = "N", default_value_t = 10)]
+    pub ghost_updates: usize,
     /// The fast single pass: planar patching and weights, no iterations (one factorisation).
     #[arg(long, conflicts_with = "paper")]
     pub fast: bool,
@@ -116,6 +125,9 @@ pub fn options(a: &SolveArgs) -> Options {
             vertices: o.vertices,
             soft: o.soft,
             snap: o.snap,
+            order: o.order,
+            // [A11]'s own ghosts for --method cauchy.
+            ghost_updates: 0,
             ..Options::paper()
         };
     }
@@ -130,6 +142,7 @@ fn explicit_options(a: &SolveArgs) -> Options {
             MethodArg::Triharmonic => Method::Triharmonic,
             MethodArg::Method4 => Method::Method4,
             MethodArg::ShortPaper => Method::ShortPaper,
+            MethodArg::Cauchy => Method::Cauchy,
         },
         spacing: a.spacing,
         vertices: Some(a.vertices),
@@ -153,5 +166,8 @@ fn explicit_options(a: &SolveArgs) -> Options {
         },
         guide_updates: a.guide_updates,
         snap: a.snap,
+        order: a.order,
+        cauchy: None,
+        ghost_updates: a.ghost_updates,
     }
 }

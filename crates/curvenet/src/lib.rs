@@ -24,10 +24,14 @@
 //! 9. [`metrics`]: distances to analytic ground truth; [`examples`]: analytic networks.
 //! 10. [`render`]: PNG pictures (shading, curvature, isophotes, normal deviation, curves).
 //!
+//! [`cauchy`]: a second surfacing system, the order-k Laplacians with ghost-vertex Cauchy
+//! constraints of Andrews et al. 2011 ([A11]; `--method cauchy`, `inflate`, `fit`).
+//!
 //! [`pipeline`] runs them all: [`surface`] is the one-shot entry point; [`surfacer`] keeps the
 //! mesh and factorisations for fast re-solves with new normals; [`harmonic`] interpolates on a
 //! given mesh (libigl's `harmonic`).
 
+pub mod cauchy;
 pub mod clock;
 pub mod conformal;
 pub mod curves;

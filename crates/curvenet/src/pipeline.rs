@@ -70,6 +70,15 @@ pub struct Options {
     /// `--snap S`: snapping tolerance for curves meeting between samples; overrides the
     /// network's `snap`. Default: 1e-3 × the bounding-box diagonal.
     pub snap: Option<f64>,
+    /// `--order K`: the Laplacian order of `--method cauchy` ([A11] eq. 1), 1–3. Default 2.
+    pub order: usize,
+    /// Per-curve `kind`, `sharpness`, `stretch` of `--method cauchy` (read from the network
+    /// JSON by [`crate::cauchy::NetworkAttributes::read`]); `None`: every curve a flat Cauchy
+    /// constraint oriented by its normals.
+    pub cauchy: Option<std::sync::Arc<crate::cauchy::NetworkAttributes>>,
+    /// `--ghost-updates N`: re-solves of `--method cauchy` with centred ghosts (see
+    /// [`crate::cauchy::constraints::solve_network`]; 0: the paper's ghosts). Default 10.
+    pub ghost_updates: usize,
 }
 
 impl Options {
@@ -131,6 +140,9 @@ impl Default for Options {
             guide_area: GuideArea::Mass,
             guide_updates: 1,
             snap: None,
+            order: 2,
+            cauchy: None,
+            ghost_updates: 10,
         }
     }
 }
@@ -292,6 +304,9 @@ pub(crate) struct Prepared {
     pub spacing: f64,
     /// The snapping tolerance the nodes were found with.
     pub snap: f64,
+    /// The validated input curves' samples and closedness (`--method cauchy` finds its
+    /// constraint curves on the mesh by them).
+    pub curves: Vec<(Vec<DVec3>, bool)>,
     /// Mean input sample spacing (soft constraints are scaled by it).
     pub input_spacing: f64,
     pub patches: usize,
@@ -444,6 +459,7 @@ pub(crate) fn prepare(
         mesh,
         spacing: d,
         snap,
+        curves: net.curves.iter().map(|c| (c.points.clone(), c.closed)).collect(),
         input_spacing,
         patches: patches.len(),
         nodes: g.nodes.len(),
@@ -527,6 +543,16 @@ pub(crate) fn solve_prepared(
                 };
                 short_paper(mesh, &ops, &params, st)
             }
+            Method::Cauchy => crate::cauchy::constraints::solve_network(
+                mesh,
+                &ops,
+                &prepared.curves,
+                options.cauchy.as_deref(),
+                prepared.snap,
+                options.order,
+                options.ghost_updates,
+                st,
+            ),
         }
     };
     let mut result = run(mesh, d, &mesh.positions, Metric::Planar, &mut st, factors)?;
@@ -568,7 +594,7 @@ pub(crate) fn solve_prepared(
                 iteration_report = (report.updates, Some(report.stop));
             }
             // The baselines keep the weights of their patching's domains, as in [CG] Table 1.
-            Method::Biharmonic | Method::Triharmonic | Method::Method4 | Method::ShortPaper => {}
+            Method::Biharmonic | Method::Triharmonic | Method::Method4 | Method::ShortPaper | Method::Cauchy => {}
         }
     }
     timings.operators = st.operators;

@@ -37,11 +37,20 @@ pub enum Method {
     Method4,
     /// [EG]: `‖Δ²V‖² + ω₁ ‖ΔV + 2H n*‖² + ω₀ soft`.
     ShortPaper,
+    /// [A11]: `Δᵏ V = 0` (`Options::order`) with ghost-vertex Cauchy constraints on the curves
+    /// ([`crate::cauchy`]).
+    Cauchy,
 }
 
 impl Method {
-    pub const ALL: [Method; 5] =
-        [Method::NormalControl, Method::Biharmonic, Method::Triharmonic, Method::Method4, Method::ShortPaper];
+    pub const ALL: [Method; 6] = [
+        Method::NormalControl,
+        Method::Biharmonic,
+        Method::Triharmonic,
+        Method::Method4,
+        Method::ShortPaper,
+        Method::Cauchy,
+    ];
 
     /// The name used on the command line and in files.
     pub fn name(self) -> &'static str {
@@ -51,6 +60,7 @@ impl Method {
             Method::Triharmonic => "triharmonic",
             Method::Method4 => "method4",
             Method::ShortPaper => "short-paper",
+            Method::Cauchy => "cauchy",
         }
     }
 
