@@ -60,15 +60,15 @@ fn checked<'py>(
 }
 
 fn array2<'py>(name: &str, obj: &Bound<'py, PyAny>, cols: Option<usize>) -> PyResult<PyReadonlyArray2<'py, f64>> {
-    Ok(checked(name, obj, 2, cols, false)?.extract()?)
+    checked(name, obj, 2, cols, false)?.extract()
 }
 
 fn index2<'py>(name: &str, obj: &Bound<'py, PyAny>) -> PyResult<PyReadonlyArray2<'py, i64>> {
-    Ok(checked(name, obj, 2, Some(3), true)?.extract()?)
+    checked(name, obj, 2, Some(3), true)?.extract()
 }
 
 fn index1<'py>(name: &str, obj: &Bound<'py, PyAny>) -> PyResult<PyReadonlyArray1<'py, i64>> {
-    Ok(checked(name, obj, 1, None, true)?.extract()?)
+    checked(name, obj, 1, None, true)?.extract()
 }
 
 /// Rows of an `(n, 3)` array as points (the Python layer checked the shape; checked again).
@@ -98,6 +98,10 @@ fn faces(a: &PyReadonlyArray2<'_, i64>) -> PyResult<Vec<[u32; 3]>> {
         })
         .collect()
 }
+
+/// An `(n, 3)` float64 array and an `(m, 3)` int64 array owned by Python.
+type Points<'py> = Bound<'py, numpy::PyArray2<f64>>;
+type Indices<'py> = Bound<'py, numpy::PyArray2<i64>>;
 
 fn to_array(p: &[DVec3]) -> Array2<f64> {
     Array2::from_shape_fn((p.len(), 3), |(i, c)| p[i][c])
@@ -132,10 +136,7 @@ impl PyNetwork {
 
     /// The curves as `(points, normals, closed, boundary)` tuples (copies).
     #[getter]
-    fn curves<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> Vec<(Bound<'py, numpy::PyArray2<f64>>, Bound<'py, numpy::PyArray2<f64>>, bool, bool)> {
+    fn curves<'py>(&self, py: Python<'py>) -> Vec<(Points<'py>, Points<'py>, bool, bool)> {
         self.inner
             .curves
             .iter()
@@ -435,10 +436,7 @@ fn _eval(
 
 /// Reads a mesh file (`.ply`, `.obj`, `.off`, as the CLI writes them): `(V, F)`.
 #[pyfunction]
-fn read_mesh<'py>(
-    py: Python<'py>,
-    path: &str,
-) -> PyResult<(Bound<'py, numpy::PyArray2<f64>>, Bound<'py, numpy::PyArray2<i64>>)> {
+fn read_mesh<'py>(py: Python<'py>, path: &str) -> PyResult<(Points<'py>, Indices<'py>)> {
     let m = curvenet::io::read_mesh(Path::new(path)).map_err(err)?;
     let f = Array2::from_shape_fn((m.faces.len(), 3), |(i, c)| m.faces[i][c] as i64);
     Ok((to_array(&m.positions).into_pyarray(py), f.into_pyarray(py)))

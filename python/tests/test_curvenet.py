@@ -25,6 +25,12 @@ CASES = [
     ("torus", ["--vertices", "4000", "--fast"], dict(vertices=4000, preset="fast")),
     ("saddle", ["--vertices", "3000", "--method", "biharmonic"], dict(vertices=3000, method="biharmonic")),
     ("cylinder", ["--vertices", "3000", "--soft", "1.5"], dict(vertices=3000, soft=1.5)),
+    ("globe", ["--vertices", "3000", "--paper"], dict(vertices=3000, preset="paper")),
+    ("cube", ["--vertices", "3000", "--method", "triharmonic"], dict(vertices=3000, method="triharmonic")),
+    ("barrel", ["--spacing", "0.08", "--method", "method4"], dict(spacing=0.08, method="method4")),
+    ("bottleneck", ["--vertices", "3000", "--method", "short-paper", "--patching", "planar",
+                    "--guide-updates", "2"], dict(vertices=3000, method="short-paper", patching="planar",
+                                                  guide_updates=2)),
 ]
 
 

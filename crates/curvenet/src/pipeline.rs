@@ -20,6 +20,7 @@ use crate::topology::cycles::half_edge_samples;
 use crate::topology::{find_nodes, find_patches, Graph, Patch};
 use rayon::prelude::*;
 use serde::Serialize;
+use std::borrow::Cow;
 
 /// Options of a surfacing run. Each field maps one-to-one onto a command-line flag.
 #[derive(Clone, Debug, PartialEq)]
@@ -291,7 +292,8 @@ pub fn surface_with_progress(
     progress: &mut dyn FnMut(&str, f64, &str),
 ) -> Result<Surface> {
     let prepared = prepare(network, options, progress)?;
-    solve_prepared(&prepared, options, progress, &mut Factors::default(), prepared.timings)
+    let base = prepared.timings;
+    solve_prepared(Cow::Owned(prepared), options, progress, None, base)
 }
 
 /// What the stages before the final solve produced: the mesh and the figures the solve and
@@ -474,14 +476,16 @@ pub(crate) fn prepare(
     })
 }
 
-/// The final solve on a prepared mesh: the method, then the 3D iterations. `factors` holds
-/// the normal-control factorisations of earlier solves on the same mesh and options (empty:
-/// computed here and stored); `base` are the timings of the stages before (added to).
+/// The final solve on a prepared mesh: the method, then the 3D iterations. `factors`, when
+/// given, holds the normal-control factorisations of earlier solves on the same mesh and
+/// options (empty: computed here and stored); without it they are freed before the
+/// iterations (lower peak memory). `base` are the timings of the stages before (added to).
+/// An owned `prepared` gives its mesh to the result; a borrowed one is copied.
 pub(crate) fn solve_prepared(
-    prepared: &Prepared,
+    prepared: Cow<'_, Prepared>,
     options: &Options,
     progress: &mut dyn FnMut(&str, f64, &str),
-    factors: &mut Factors,
+    factors: Option<&mut Factors>,
     base: Timings,
 ) -> Result<Surface> {
     let start = Instant::now();
@@ -555,7 +559,13 @@ pub(crate) fn solve_prepared(
             ),
         }
     };
-    let mut result = run(mesh, d, &mesh.positions, Metric::Planar, &mut st, factors)?;
+    let mut one_shot = Factors::default();
+    let kept = match factors {
+        Some(f) => f,
+        None => &mut one_shot,
+    };
+    let mut result = run(mesh, d, &mesh.positions, Metric::Planar, &mut st, kept)?;
+    drop(one_shot);
     let mut iteration_report: (Vec<f64>, Option<Stop>) = (Vec::new(), None);
     if options.iterations > 0 {
         match options.method {
@@ -602,8 +612,10 @@ pub(crate) fn solve_prepared(
     timings.solve = st.solve;
     progress("solve", st.operators + st.factor + st.solve, options.method.name());
 
+    let (cycles, components, nodes, segments) =
+        (prepared.patches, prepared.components, prepared.nodes, prepared.segments);
     let clock = Instant::now();
-    let mut mesh = mesh.clone();
+    let mut mesh = prepared.into_owned().mesh;
     mesh.positions = result.positions;
     let (normals, mean_curvature) = normals_and_mean_curvature(&mesh.faces, &mesh.positions, &mesh.on_boundary);
     timings.operators += clock.elapsed().as_secs_f64();
@@ -612,10 +624,10 @@ pub(crate) fn solve_prepared(
         vertices: mesh.num_vertices(),
         faces: mesh.faces.len(),
         curve_vertices: mesh.num_curve,
-        cycles: prepared.patches,
-        components: prepared.components,
-        nodes: prepared.nodes,
-        segments: prepared.segments,
+        cycles,
+        components,
+        nodes,
+        segments,
         spacing: d,
         method: options.method.name().to_string(),
         iterations: iteration_report.0.len(),

@@ -24,6 +24,7 @@ use crate::network::{curve_label, Network};
 use crate::pipeline::{prepare, solve_prepared, Options, Prepared, Surface, Timings};
 use crate::topology::find_nodes;
 use rayon::prelude::*;
+use std::borrow::Cow;
 
 /// A network prepared for repeated solves (see the module documentation).
 pub struct Surfacer {
@@ -74,7 +75,13 @@ impl Surfacer {
     /// include the preparation; later ones only the solve.
     pub fn solve(&mut self) -> Result<Surface> {
         let base = if self.solves == 0 { self.prepared.timings } else { Timings::default() };
-        let surface = solve_prepared(&self.prepared, &self.options, &mut |_, _, _| {}, &mut self.factors, base)?;
+        let surface = solve_prepared(
+            Cow::Borrowed(&self.prepared),
+            &self.options,
+            &mut |_, _, _| {},
+            Some(&mut self.factors),
+            base,
+        )?;
         if self.solves == 0 {
             // The conformal first solve belongs to the preparation: counted once.
             self.prepared.solve_timings = Default::default();

@@ -31,7 +31,8 @@ fn check(name: &str, options: &Options, curve: usize) {
     s.update_normals(curve, &normals).unwrap();
     let again = s.solve().unwrap();
     let fresh =
-        solve_prepared(&s.prepared, options, &mut |_, _, _| {}, &mut Factors::default(), Timings::default()).unwrap();
+        solve_prepared(std::borrow::Cow::Borrowed(&s.prepared), options, &mut |_, _, _| {}, None, Timings::default())
+            .unwrap();
     let d = max_distance(&again.mesh.positions, &fresh.mesh.positions);
     assert!(d <= 1e-10, "{name}: re-solve differs from a fresh solve by {d:e}");
     let moved = max_distance(&again.mesh.positions, &first.mesh.positions);
