@@ -23,7 +23,8 @@
 //! 8. [`methods`]: normal-control ([CG] eq. 1–3), biharmonic, triharmonic.
 //! 9. [`metrics`]: distances to analytic ground truth; [`examples`]: analytic networks.
 //!
-//! [`pipeline`] runs them all: [`surface`] is the one-shot entry point.
+//! [`pipeline`] runs them all: [`surface`] is the one-shot entry point. [`sampling`] builds
+//! test networks on triangle meshes (plane sections, `curvenet sample`).
 
 pub mod conformal;
 pub mod curves;
@@ -38,6 +39,7 @@ pub mod network;
 pub mod operators;
 pub mod ordering;
 pub mod pipeline;
+pub mod sampling;
 pub mod solve;
 pub mod sparse;
 pub mod tessellate;
