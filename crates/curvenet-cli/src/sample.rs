@@ -72,6 +72,22 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
             r.dropped_sections, r.dropped_boundary_loops
         );
     }
+    if r.zipped > 0 {
+        dropped += &format!("; welded {} boundary vertex pair(s) across cracks", r.zipped);
+    }
+    if r.dropped_bad > 0 {
+        dropped += &format!(
+            "; left out {} section(s) still crossing another curve at a shallow angle or twice nearby after {} plane moves",
+            r.dropped_bad,
+            curvenet::sampling::MAX_PLANE_MOVES
+        );
+    }
+    if r.trimmed > 0 {
+        dropped += &format!("; cut back {} section end(s) that ran along the boundary", r.trimmed);
+    }
+    if r.hairpins > 0 {
+        dropped += &format!("; cut {} hairpin(s) where a curve came back along itself", r.hairpins);
+    }
     if r.pinches > 0 {
         dropped += &format!("; split {} pinch vertex(es) where the mesh boundary touches itself", r.pinches);
     }

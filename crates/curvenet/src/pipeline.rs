@@ -15,8 +15,9 @@ use crate::methods::{GuideArea, Method, SolveTimings, Weighting};
 use crate::network::Network;
 use crate::operators::{cotan_operators, normals_and_mean_curvature, Metric};
 use crate::tessellate::{flatten_patches, tessellate, tessellate_conformal, VERTICES_PER_AREA};
+use crate::topology::cycles::find_patches_open;
 use crate::topology::cycles::half_edge_samples;
-use crate::topology::{find_nodes, find_patches, trim_dangling, Graph, Patch};
+use crate::topology::{find_nodes, trim_dangling, Graph, Patch};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::time::Instant;
@@ -335,7 +336,8 @@ pub fn surface_with_progress(
         g.curves.par_iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
     let spline_time = clock.elapsed().as_secs_f64();
     let clock = Instant::now();
-    let patches = find_patches(&g, &splines)?;
+    let (patches, w) = find_patches_open(&mut g, &splines)?;
+    warnings.extend(w);
     timings.cycles = clock.elapsed().as_secs_f64();
     progress("cycles", timings.cycles, &format!("{} patches", patches.len()));
 

@@ -53,6 +53,11 @@ impl SampleOptions {
     pub const DEFAULT_PLANES: [usize; 3] = [8, 8, 8];
     /// Default sample spacing relative to the bounding-box diagonal.
     pub const DEFAULT_SPACING_RELATIVE: f64 = 1.0 / 200.0;
+    /// The snapping tolerance written in the network, relative to the spacing: above the chord
+    /// sag (spacing² κ / 8 ≈ 3% of the spacing on the test meshes) plus 1% noise on two curves
+    /// (about 4%), below the default (0.2 spacing at the default spacing) so that curves that
+    /// pass close by without crossing (mesh boundaries, creases) are not snapped together.
+    pub const SNAP_SPACING: f64 = 0.12;
     /// Default `tilt` in degrees.
     pub const DEFAULT_TILT_DEG: f64 = 20.0;
 }
@@ -89,6 +94,18 @@ pub struct SampleReport {
     /// Boundary vertices where the boundary touches itself (several fans of faces), split into
     /// one copy per fan, the copies moved apart into their fans ([`split_pinches`]).
     pub pinches: usize,
+    /// Boundary vertices welded to a boundary vertex across a crack ([`zip_cracks`]).
+    pub zipped: usize,
+    /// Hairpins cut off the curves ([`remove_hairpins`]).
+    pub hairpins: usize,
+    /// Planes still in a close or shallow crossing after [`MAX_PLANE_MOVES`] moves (the
+    /// pipeline may then find overlapping curves there).
+    pub unresolved: usize,
+    /// Section ends cut back where they ran along the mesh boundary ([`SampleOptions`]).
+    pub trimmed: usize,
+    /// Sections left out because they still crossed another curve at a shallow angle (or
+    /// twice, or nearly) after the plane moves.
+    pub dropped_bad: usize,
 }
 
 /// A sample of a polyline before resampling: position, normal, and whether it is a crossing
@@ -102,6 +119,8 @@ struct Raw {
 
 /// A polyline traced on the mesh.
 struct Traced {
+    /// The section plane (none for boundary loops).
+    plane: Option<usize>,
     samples: Vec<Raw>,
     closed: bool,
     boundary: bool,
@@ -164,12 +183,18 @@ pub fn section_directions(tilt_deg: f64) -> [DVec3; 3] {
 /// move one of the planes: such curves run alongside each other over a long stretch.
 pub const MIN_CROSSING_ANGLE_DEG: f64 = 18.0;
 /// How many times [`sample_mesh`] moves planes off shallow crossings before it keeps them.
-const MAX_PLANE_MOVES: usize = 16;
+pub const MAX_PLANE_MOVES: usize = 24;
 
 /// Planes whose sections come within `near` of a section of another plane away from their
 /// crossings (near-misses: the pipeline would snap them into a node that is no crossing). Of
-/// each such pair, the plane with the larger index is returned.
-fn near_misses(cuts: &[FaceCut], crossing_points: &HashMap<(usize, usize), Vec<DVec3>>, near: f64) -> Vec<usize> {
+/// each such pair, the plane with the larger index below `first_virtual` is returned (planes
+/// from `first_virtual` on stand for the mesh boundary and are not moved).
+fn near_misses(
+    cuts: &[FaceCut],
+    crossing_points: &HashMap<(usize, usize), Vec<DVec3>>,
+    near: f64,
+    first_virtual: usize,
+) -> Vec<(usize, DVec3)> {
     use crate::geom::closest_params_segment_segment;
     let h = near.max(f64::MIN_POSITIVE);
     let cell = |p: DVec3| ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
@@ -207,7 +232,7 @@ fn near_misses(cuts: &[FaceCut], crossing_points: &HashMap<(usize, usize), Vec<D
                 let at_crossing =
                     crossing_points.get(&key).is_some_and(|ps| ps.iter().any(|p| p.distance(m) <= 4.0 * near));
                 if !at_crossing {
-                    out.push(key.1);
+                    out.push((if key.1 >= first_virtual { key.0 } else { key.1 }, m));
                 }
             }
         }
@@ -293,8 +318,17 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         .filter(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2])
         .collect();
     let mut moved = positions.to_vec();
-    let near = 2.0 * (Network::DEFAULT_SNAP_RELATIVE * diag).max(Network::DEFAULT_SNAP_SPACING * spacing);
+    // The network's snapping tolerance: the crossings fall between samples by the chord sag
+    // and the noise, a few percent of the spacing each ([`SampleOptions::SNAP_SPACING`]).
+    let snap = SampleOptions::SNAP_SPACING * spacing;
+    let near = 2.0 * snap;
+    let zipped = zip_cracks(&mut moved, &mut welded, near);
     let pinches = split_pinches(&mut moved, &mut welded, near);
+    // Crossings closer than this are moved apart: one sample spacing, and well beyond the
+    // pipeline's node clustering (twice its snapping tolerance).
+    let gap = spacing.max(2.0 * near);
+    // Two crossings of the same two sections: the same.
+    let gap_same = gap;
     let (positions, faces) = (&moved[..], &welded[..]);
     let normals = vertex_normals(positions, faces);
 
@@ -369,6 +403,11 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     // Sections of two planes closer than `near` away from their crossings would be snapped
     // together by the pipeline: twice its default snapping tolerance (Network::snap_tolerance).
     let mut round = 0;
+    let unresolved;
+    let unresolved_at: Vec<(usize, DVec3)>;
+    let mut final_pass = false;
+    let mut best: Option<(usize, Vec<(usize, f64)>)> = None;
+    let mut rng = crate::network::Rng::new(0x5EC7);
     let (cuts, crossing_at, mut crossings) = loop {
         // Cut every face by every plane.
         let mut cuts_of_face: Vec<Vec<usize>> = vec![Vec::new(); faces.len()];
@@ -399,7 +438,7 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         // crossing_at[cut] = list of (parameter along ends[0] → ends[1], sample).
         let mut crossing_at: Vec<Vec<(f64, Raw)>> = vec![Vec::new(); cuts.len()];
         let mut crossings = 0usize;
-        let mut shallow: Vec<usize> = Vec::new();
+        let mut shallow: Vec<(usize, DVec3)> = Vec::new();
         let mut crossing_points: HashMap<(usize, usize), Vec<DVec3>> = HashMap::new();
         for (fi, list) in cuts_of_face.iter().enumerate() {
             for (x, &ca) in list.iter().enumerate() {
@@ -427,31 +466,68 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
                     let (da, db) = (a.ends[1] - a.ends[0], b.ends[1] - b.ends[0]);
                     let cos = da.dot(db).abs() / (da.length() * db.length());
                     if cos > cos_min {
-                        shallow.push(b.plane);
+                        shallow.push((b.plane, p));
                     }
                 }
             }
         }
-        shallow.extend(near_misses(&cuts, &crossing_points, near));
-        // Two crossings of the same two sections closer than the snapping distance: the
-        // pipeline would merge them into one node where the curves touch without crossing.
-        for (key, ps) in &crossing_points {
-            if ps.iter().enumerate().any(|(i, p)| ps[i + 1..].iter().any(|q| q.distance(*p) <= 2.0 * near)) {
-                shallow.push(key.1);
+        // The mesh boundary as a pseudo-plane (index planes.len()): sections must end on it at
+        // a fair angle and not run alongside it.
+        let boundary_plane = planes.len();
+        let mut with_boundary: Vec<FaceCut> = cuts.clone();
+        if opts.boundary {
+            for (e, fs) in &edge_faces {
+                if fs.len() == 1 {
+                    let ends = [positions[e.0 as usize], positions[e.1 as usize]];
+                    with_boundary.push(FaceCut { plane: boundary_plane, edges: [*e, *e], ends });
+                }
+            }
+            for c in &cuts {
+                for k in 0..2 {
+                    if edge_faces.get(&c.edges[k]).is_some_and(|f| f.len() == 1) {
+                        crossing_points.entry((c.plane, boundary_plane)).or_default().push(c.ends[k]);
+                        let e = positions[c.edges[k].1 as usize] - positions[c.edges[k].0 as usize];
+                        let d = c.ends[1] - c.ends[0];
+                        if d.dot(e).abs() / (d.length() * e.length()) > cos_min {
+                            shallow.push((c.plane, c.ends[k]));
+                        }
+                    }
+                }
             }
         }
-        shallow.sort_unstable();
-        shallow.dedup();
+        shallow.extend(near_misses(&with_boundary, &crossing_points, near, boundary_plane));
+        // Crossings closer than `gap` to each other: two crossings of the same two sections
+        // (the pipeline would merge them into one node where the curves touch without
+        // crossing), or three sections nearly through one point (a tiny cell whose nodes the
+        // pipeline cannot tell apart once the crossings fall between noisy samples).
+        shallow.extend(close_crossings(&crossing_points, gap, gap_same, boundary_plane));
+        let mut bad: Vec<usize> = shallow.iter().map(|x| x.0).collect();
+        bad.sort_unstable();
+        bad.dedup();
         round += 1;
-        if shallow.is_empty() || round > MAX_PLANE_MOVES {
+        if bad.is_empty() || final_pass {
+            unresolved = bad.len();
+            unresolved_at = shallow;
             break (cuts, crossing_at, crossings);
         }
-        // Move each plane of a shallow crossing off its level: ±5%, ±10%, … ±40% of the slab width.
-        let step = 0.05 * round.div_ceil(2) as f64 * if round % 2 == 1 { 1.0 } else { -1.0 };
-        for pi in shallow {
+        if best.as_ref().is_none_or(|b| bad.len() < b.0) {
+            best = Some((bad.len(), planes.clone()));
+        }
+        if round > MAX_PLANE_MOVES {
+            // Out of moves: cut once more with the best configuration seen.
+            if let Some((_, p)) = best.take() {
+                planes = p;
+            }
+            final_pass = true;
+            continue;
+        }
+        // Move each plane in a bad crossing to a random level within ±45% of the slab width
+        // around its nominal level (deterministic: the generator has a fixed seed).
+        for pi in bad {
             let axis = planes[pi].0;
             let slab = slab_of[axis];
-            planes[pi].1 = plane_level(&axis_levels[axis], nominal[pi] + step * slab, 0.03 * slab);
+            let offset = (2.0 * rng.uniform() - 1.0) * 0.45 * slab;
+            planes[pi].1 = plane_level(&axis_levels[axis], nominal[pi] + offset, 0.03 * slab);
         }
     };
 
@@ -459,6 +535,8 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     let mut traced: Vec<Traced> = Vec::new();
     // Section end points on boundary edges, for the boundary loops: edge → (point, normal).
     let mut ends_on_boundary: HashMap<(u32, u32), Vec<Raw>> = HashMap::new();
+    let mut report_trimmed = 0;
+    let boundary_grid = BoundaryGrid::new(positions, &edge_faces, 3.0 * snap);
     let mut cuts_of_plane: Vec<Vec<usize>> = vec![Vec::new(); planes.len()];
     for (ci, c) in cuts.iter().enumerate() {
         cuts_of_plane[c.plane].push(ci);
@@ -523,10 +601,30 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
                 }
             }
             if !closed {
-                // Ends on boundary edges meet the boundary loops there.
-                for (e, raw) in
-                    [(cuts[ci0].edges[k0], samples[0]), (cuts[ci].edges[1 - enter], samples[samples.len() - 1])]
-                {
+                // Ends on boundary edges meet the boundary loops there. An end that runs along
+                // the boundary first is cut back to where it leaves it (`trim_along`).
+                let mut end_edges = [cuts[ci0].edges[k0], cuts[ci].edges[1 - enter]];
+                if opts.boundary {
+                    for side in 0..2 {
+                        if !edge_faces.get(&end_edges[side]).is_some_and(|f| f.len() == 1) {
+                            continue;
+                        }
+                        if side == 1 {
+                            samples.reverse();
+                        }
+                        if let Some(e) = trim_along(&mut samples, &boundary_grid, 3.0 * snap, positions, &normals) {
+                            end_edges[side] = e;
+                            report_trimmed += 1;
+                        }
+                        if side == 1 {
+                            samples.reverse();
+                        }
+                    }
+                }
+                if samples.len() < 2 {
+                    continue;
+                }
+                for (e, raw) in [(end_edges[0], samples[0]), (end_edges[1], samples[samples.len() - 1])] {
                     if edge_faces.get(&e).is_some_and(|f| f.len() == 1) {
                         ends_on_boundary.entry(e).or_default().push(raw);
                     }
@@ -534,6 +632,7 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
             }
             let (axis, lev) = planes[pi];
             traced.push(Traced {
+                plane: Some(pi),
                 samples,
                 closed,
                 boundary: false,
@@ -555,9 +654,19 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
             t.samples[last].node = true;
         }
     }
-    let mut report = SampleReport { spacing, crossings, pinches, ..Default::default() };
+    let mut report =
+        SampleReport { spacing, crossings, pinches, zipped, unresolved, trimmed: report_trimmed, ..Default::default() };
     let mut curves = Vec::new();
     for t in traced.into_iter().chain(boundary_loops) {
+        // A section still in a bad crossing after the plane moves is left out.
+        if let Some(p) = t.plane {
+            let bad_here =
+                unresolved_at.iter().any(|(q, at)| *q == p && t.samples.iter().any(|r| r.p.distance(*at) <= gap));
+            if bad_here {
+                report.dropped_bad += 1;
+                continue;
+            }
+        }
         // Meets another curve: a crossing inside, or (boundary loops) a section end.
         let interior_nodes = t.samples.iter().filter(|s| s.node).count();
         let meets = if t.boundary || t.closed { interior_nodes > 0 } else { interior_nodes > 2 };
@@ -569,7 +678,8 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
             }
             continue;
         }
-        let (points, normals) = resample(&t.samples, t.closed, spacing, opts.shared_nodes);
+        let (mut points, mut normals) = resample(&t.samples, t.closed, spacing, opts.shared_nodes);
+        report.hairpins += remove_hairpins(&mut points, &mut normals, t.closed, near);
         let need = if t.closed { 3 } else { 2 };
         if points.len() < need {
             continue;
@@ -587,11 +697,151 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
                 .into(),
         ));
     }
-    let mut net = Network { curves, snap: None };
+    let mut net = Network { curves, snap: Some(snap) };
     if opts.noise > 0.0 {
         net = net.perturbed(opts.noise, opts.seed);
     }
     Ok((net, report))
+}
+
+/// Planes to move so that no two crossings are closer than `gap` (`gap_same` for two
+/// crossings of the same two planes): of two close crossings, a plane they share is kept and
+/// the other one with the larger index is returned.
+fn close_crossings(
+    crossing_points: &HashMap<(usize, usize), Vec<DVec3>>,
+    gap: f64,
+    gap_same: f64,
+    first_virtual: usize,
+) -> Vec<(usize, DVec3)> {
+    let mut out = Vec::new();
+    for (key, ps) in crossing_points {
+        if let Some(p) = ps.iter().enumerate().find(|(i, p)| ps[i + 1..].iter().any(|q| q.distance(**p) <= gap_same)) {
+            out.push((if key.1 >= first_virtual { key.0 } else { key.1 }, *p.1));
+        }
+    }
+    let h = gap.max(f64::MIN_POSITIVE);
+    let cell = |p: DVec3| ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
+    let mut all: Vec<((usize, usize), DVec3)> =
+        crossing_points.iter().flat_map(|(k, ps)| ps.iter().map(move |p| (*k, *p))).collect();
+    all.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.x.total_cmp(&b.1.x)));
+    let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
+    for (i, (_, p)) in all.iter().enumerate() {
+        grid.entry(cell(*p)).or_default().push(i);
+    }
+    for (i, (ka, p)) in all.iter().enumerate() {
+        let c = cell(*p);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    for &j in grid.get(&(c.0 + dx, c.1 + dy, c.2 + dz)).map_or(&[][..], |v| &v[..]) {
+                        let (kb, q) = &all[j];
+                        if j <= i || q.distance(*p) > gap {
+                            continue;
+                        }
+                        let planes = [ka.0, ka.1, kb.0, kb.1];
+                        let shared = planes.iter().find(|&&x| planes.iter().filter(|&&y| y == x).count() > 1);
+                        let pick = planes
+                            .iter()
+                            .copied()
+                            .filter(|x| Some(x) != shared && *x < first_virtual)
+                            .max()
+                            .unwrap_or(ka.0);
+                        out.push((pick, *p));
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Closes cracks in the mesh: a boundary vertex closer than `tol` to a boundary vertex it
+/// shares no face with (the two sides of a narrow slit, an unwelded seam with a small gap) is
+/// welded to it (both move to their midpoint). Faces that degenerate are dropped. Nothing is
+/// changed if welding would make an edge non-manifold. Returns the number of vertices welded.
+pub fn zip_cracks(positions: &mut [DVec3], faces: &mut Vec<[u32; 3]>, tol: f64) -> usize {
+    let mut count: HashMap<(u32, u32), usize> = HashMap::new();
+    for f in faces.iter() {
+        for k in 0..3 {
+            *count.entry(edge_key(f[k], f[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    let mut boundary: Vec<u32> =
+        count.iter().filter(|(_, &c)| c == 1).flat_map(|(e, _)| [e.0, e.1]).collect::<Vec<_>>();
+    boundary.sort_unstable();
+    boundary.dedup();
+    if boundary.is_empty() {
+        return 0;
+    }
+    let mut neighbours: HashMap<u32, Vec<u32>> = HashMap::new();
+    for f in faces.iter() {
+        for &a in f {
+            for &b in f {
+                if a != b {
+                    neighbours.entry(a).or_default().push(b);
+                }
+            }
+        }
+    }
+    let h = tol.max(f64::MIN_POSITIVE);
+    let cell = |p: DVec3| ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
+    let mut grid: HashMap<(i64, i64, i64), Vec<u32>> = HashMap::new();
+    for &v in &boundary {
+        grid.entry(cell(positions[v as usize])).or_default().push(v);
+    }
+    let mut uf = crate::topology::UnionFind::new(positions.len());
+    let mut welded = 0;
+    for &v in &boundary {
+        let p = positions[v as usize];
+        let c = cell(p);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    for &w in grid.get(&(c.0 + dx, c.1 + dy, c.2 + dz)).map_or(&[][..], |l| &l[..]) {
+                        if w > v
+                            && positions[w as usize].distance(p) <= tol
+                            && !neighbours.get(&v).is_some_and(|n| n.contains(&w))
+                        {
+                            uf.union(v as usize, w as usize);
+                            welded += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if welded == 0 {
+        return 0;
+    }
+    let new_faces: Vec<[u32; 3]> = faces
+        .iter()
+        .map(|f| f.map(|v| uf.find(v as usize) as u32))
+        .filter(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2])
+        .collect();
+    let mut count: HashMap<(u32, u32), usize> = HashMap::new();
+    for f in &new_faces {
+        for k in 0..3 {
+            *count.entry(edge_key(f[k], f[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    if count.values().any(|&c| c > 2) {
+        return 0;
+    }
+    // Move each welded group to its mean.
+    let mut sum: HashMap<usize, (DVec3, usize)> = HashMap::new();
+    for &v in &boundary {
+        let r = uf.find(v as usize);
+        let e = sum.entry(r).or_insert((DVec3::ZERO, 0));
+        e.0 += positions[v as usize];
+        e.1 += 1;
+    }
+    for (r, (s, n)) in sum {
+        if n > 1 {
+            positions[r] = s / n as f64;
+        }
+    }
+    *faces = new_faces;
+    welded
 }
 
 /// Splits every vertex whose faces form several fans (a pinch: the boundary touches itself
@@ -725,31 +975,273 @@ fn trace_boundary(
                 }
             }
             let name = format!("boundary #{}", loops.len());
-            loops.push(Traced { samples, closed: true, boundary: true, name });
+            loops.push(Traced { plane: None, samples, closed: true, boundary: true, name });
         }
     }
     loops
 }
 
+/// The mesh's boundary edges in a uniform grid of cell size `h`.
+struct BoundaryGrid {
+    h: f64,
+    cells: HashMap<(i64, i64, i64), Vec<(u32, u32)>>,
+}
+
+impl BoundaryGrid {
+    fn new(positions: &[DVec3], edge_faces: &HashMap<(u32, u32), Vec<usize>>, h: f64) -> Self {
+        let h = h.max(f64::MIN_POSITIVE);
+        let mut cells: HashMap<(i64, i64, i64), Vec<(u32, u32)>> = HashMap::new();
+        let cell = |p: DVec3| ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
+        for (e, fs) in edge_faces {
+            if fs.len() != 1 {
+                continue;
+            }
+            let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
+            let (lo, hi) = (cell(a.min(b)), cell(a.max(b)));
+            if (hi.0 - lo.0 + 1) * (hi.1 - lo.1 + 1) * (hi.2 - lo.2 + 1) > 4096 {
+                continue;
+            }
+            for x in lo.0..=hi.0 {
+                for y in lo.1..=hi.1 {
+                    for z in lo.2..=hi.2 {
+                        cells.entry((x, y, z)).or_default().push(*e);
+                    }
+                }
+            }
+        }
+        BoundaryGrid { h, cells }
+    }
+
+    /// The closest boundary edge point within the grid's cell size of `p`: (distance, edge, t).
+    fn closest(&self, positions: &[DVec3], p: DVec3) -> Option<(f64, (u32, u32), f64)> {
+        let h = self.h;
+        let c = ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
+        let mut best: Option<(f64, (u32, u32), f64)> = None;
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    for e in self.cells.get(&(c.0 + dx, c.1 + dy, c.2 + dz)).map_or(&[][..], |v| &v[..]) {
+                        let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
+                        let d = b - a;
+                        let t = ((p - a).dot(d) / d.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+                        let dist = p.distance(a + t * d);
+                        if dist <= h && best.is_none_or(|x| dist < x.0) {
+                            best = Some((dist, *e, t));
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
+/// A section that ends on the mesh boundary but runs along it first (closer than `band` to
+/// it) would be snapped onto the boundary curve over that stretch by the pipeline: its first
+/// samples within the band are removed and the section ends instead at the boundary point
+/// closest to its first sample outside the band (a short link across to the boundary).
+/// Returns the boundary edge of the new end, or `None` when nothing was cut.
+fn trim_along(
+    samples: &mut Vec<Raw>,
+    grid: &BoundaryGrid,
+    band: f64,
+    positions: &[DVec3],
+    normals: &[DVec3],
+) -> Option<(u32, u32)> {
+    // The end point itself is on the boundary; look at the following samples.
+    let mut k = 1;
+    while k < samples.len() && grid.closest(positions, samples[k].p).is_some_and(|c| c.0 < band) {
+        k += 1;
+    }
+    // Leaves the band within 2.5 band widths of arc: a fair crossing (≥ 24°), keep it.
+    let arc: f64 = (1..k.min(samples.len())).map(|i| samples[i].p.distance(samples[i - 1].p)).sum();
+    if arc <= 2.5 * band || k >= samples.len() {
+        if k >= samples.len() {
+            samples.clear();
+        }
+        return None;
+    }
+    let (_, e, t) = grid.closest(positions, samples[k - 1].p)?;
+    let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
+    let n = normals[e.0 as usize].lerp(normals[e.1 as usize], t);
+    let end = Raw { p: a.lerp(b, t), n, node: false };
+    samples.drain(0..k - 1);
+    samples[0] = end;
+    Some(e)
+}
+
+/// Cuts hairpins off a resampled curve: where the curve comes back within `tol` of itself
+/// after a few samples (a narrow notch of the mesh boundary, a thin fin cut by a plane), the
+/// samples in between are removed, so that the curve does not run alongside itself (the
+/// pipeline would take it for an overlap). Returns the number of hairpins cut.
+pub fn remove_hairpins(points: &mut Vec<DVec3>, normals: &mut Vec<DVec3>, closed: bool, tol: f64) -> usize {
+    const REACH: usize = 12;
+    let mut cut = 0;
+    let mut i = 0;
+    while i < points.len() {
+        let m = points.len();
+        if m <= REACH + 3 {
+            break;
+        }
+        let last = if closed { i + REACH } else { (i + REACH).min(m - 1) };
+        // Segment (i, i+1) against segment (j, j+1), j ≥ i + 2: close → drop i+1 ..= j.
+        let seg_dist = |j: usize| {
+            let (a0, a1) = (points[i], points[(i + 1) % m]);
+            let (b0, b1) = (points[j % m], points[(j + 1) % m]);
+            let (s, t) = crate::geom::closest_params_segment_segment(a0, a1, b0, b1);
+            a0.lerp(a1, s).distance(b0.lerp(b1, t))
+        };
+        let top = if closed { last } else { last.min(m - 2) };
+        let far = (i + 2..=top).filter(|&j| seg_dist(j) <= tol).max();
+        if let Some(j) = far {
+            // Remove samples i+1 ..= j (cyclically).
+            let remove: Vec<usize> = (i + 1..=j).map(|k| k % m).collect();
+            if remove.len() + 3 > m {
+                break;
+            }
+            let mut keep = vec![true; m];
+            for k in remove {
+                keep[k] = false;
+            }
+            let before = keep[..i].iter().filter(|&&k| !k).count();
+            let mut it = keep.iter();
+            points.retain(|_| *it.next().unwrap_or(&true));
+            let mut it = keep.iter();
+            normals.retain(|_| *it.next().unwrap_or(&true));
+            i -= before;
+            cut += 1;
+            continue;
+        }
+        i += 1;
+    }
+    cut
+}
+
+/// Turning angle (degrees) above which a polyline sample is a corner (a sharp edge of the
+/// mesh crossed by the section) and is kept through resampling: a chord across it would cut
+/// the corner and come close to the curves on the other side of the edge.
+pub const CORNER_DEG: f64 = 30.0;
+
+/// Corner samples of `pts` (open polyline; a closed one repeats its first sample at the end):
+/// the turning angle between the directions to the samples at least `reach` behind and ahead
+/// exceeds [`CORNER_DEG`]; of corners closer than `reach`, the sharpest is kept.
+fn corners(pts: &[Raw], arc: &[f64], closed: bool, reach: f64) -> Vec<bool> {
+    let m = pts.len();
+    let total = arc[m - 1];
+    let mut angle = vec![0.0; m];
+    let cos_max = CORNER_DEG.to_radians().cos();
+    for i in 0..m {
+        if !closed && (i == 0 || i == m - 1) {
+            continue;
+        }
+        if closed && total < 4.0 * reach {
+            break;
+        }
+        let find = |step: isize| -> Option<DVec3> {
+            let mut j = i as isize;
+            for _ in 0..m {
+                j += step;
+                let jj =
+                    if closed { j.rem_euclid(m as isize - 1) as usize } else { j.clamp(0, m as isize - 1) as usize };
+                if pts[jj].p.distance(pts[i].p) >= reach {
+                    return Some(pts[jj].p);
+                }
+                if !closed && (jj == 0 || jj == m - 1) {
+                    return None;
+                }
+            }
+            None
+        };
+        if let (Some(b), Some(a)) = (find(-1), find(1)) {
+            let (u, v) = ((pts[i].p - b).normalize_or_zero(), (a - pts[i].p).normalize_or_zero());
+            let c = u.dot(v);
+            if c < cos_max {
+                angle[i] = c.clamp(-1.0, 1.0).acos();
+            }
+        }
+    }
+    // Keep local maxima within `reach`.
+    let mut out = vec![false; m];
+    for i in 0..m {
+        if angle[i] == 0.0 {
+            continue;
+        }
+        let mut best = true;
+        for j in 0..m {
+            if j != i && angle[j] > angle[i] && pts[j].p.distance(pts[i].p) < reach {
+                best = false;
+                break;
+            }
+        }
+        out[i] = best;
+    }
+    out
+}
+
 /// Resamples a polyline at about `spacing` by arc length (positions on the polyline, so on
-/// the mesh; normals interpolated linearly and normalised). With `keep_nodes` the node samples
-/// are kept and each stretch between two of them is split evenly; otherwise the whole curve
-/// is split evenly (from its first sample; for a closed curve from a point half a spacing
-/// before the first node) and the nodes are not samples.
+/// the mesh; normals interpolated linearly and normalised). Corner samples ([`corners`]), the
+/// ends of an open curve and, with `keep_nodes`, the node samples are kept, and each stretch
+/// between two kept samples is split evenly. Without `keep_nodes` the crossings are not
+/// samples (a closed curve without corners starts half a step from its first node).
 fn resample(raw: &[Raw], closed: bool, spacing: f64, keep_nodes: bool) -> (Vec<DVec3>, Vec<DVec3>) {
     let mut pts: Vec<Raw> = raw.to_vec();
-    // For a closed curve start at a node (so that stretches run node to node).
     if closed {
-        if let Some(k) = pts.iter().position(|r| r.node) {
-            pts.rotate_left(k);
-        }
         pts.push(pts[0]);
     }
-    let m = pts.len();
-    let mut arc = vec![0.0; m];
-    for i in 1..m {
-        arc[i] = arc[i - 1] + pts[i].p.distance(pts[i - 1].p);
+    let arc_of = |pts: &[Raw]| {
+        let mut arc = vec![0.0; pts.len()];
+        for i in 1..pts.len() {
+            arc[i] = arc[i - 1] + pts[i].p.distance(pts[i - 1].p);
+        }
+        arc
+    };
+    let reach = 0.3 * spacing;
+    let mut corner = corners(&pts, &arc_of(&pts), closed, reach);
+    // A corner next to a kept node would make a tiny edge: the node is enough.
+    if keep_nodes {
+        for i in 0..pts.len() {
+            if corner[i] && pts.iter().any(|r| r.node && r.p.distance(pts[i].p) < reach) {
+                corner[i] = false;
+            }
+        }
     }
+    let fixed_flag: Vec<bool> = (0..pts.len()).map(|i| corner[i] || (keep_nodes && pts[i].node)).collect();
+    // A closed curve starts at a kept sample, or at a node (then shifted by half a step).
+    let mut shift = false;
+    if closed {
+        pts.pop();
+        let mut flags = fixed_flag[..pts.len()].to_vec();
+        let start = flags.iter().position(|&f| f).or_else(|| {
+            shift = true;
+            pts.iter().position(|r| r.node)
+        });
+        if let Some(k) = start {
+            pts.rotate_left(k);
+            flags.rotate_left(k);
+        }
+        pts.push(pts[0]);
+        flags[0] = true;
+        flags.push(true);
+        return finish(&pts, &arc_of(&pts), &flags, closed, spacing, shift);
+    }
+    let mut flags = fixed_flag;
+    let m = flags.len();
+    flags[0] = true;
+    flags[m - 1] = true;
+    finish(&pts, &arc_of(&pts), &flags, closed, spacing, false)
+}
+
+/// Splits each stretch between two `fixed` samples evenly at about `spacing`; with `shift`
+/// (a closed curve with one stretch) the samples are moved by half a step.
+fn finish(
+    pts: &[Raw],
+    arc: &[f64],
+    fixed: &[bool],
+    closed: bool,
+    spacing: f64,
+    shift: bool,
+) -> (Vec<DVec3>, Vec<DVec3>) {
+    let m = pts.len();
     let at = |s: f64| -> (DVec3, DVec3) {
         let k = arc.partition_point(|&a| a <= s).clamp(1, m - 1) - 1;
         let len = arc[k + 1] - arc[k];
@@ -762,42 +1254,28 @@ fn resample(raw: &[Raw], closed: bool, spacing: f64, keep_nodes: bool) -> (Vec<D
         out_p.push(p);
         out_n.push(n.normalize_or_zero());
     };
-    let total = arc[m - 1];
-    if keep_nodes {
-        let mut fixed: Vec<usize> = (0..m).filter(|&i| pts[i].node).collect();
-        if fixed.first() != Some(&0) {
-            fixed.insert(0, 0);
+    let idx: Vec<usize> = (0..m).filter(|&i| fixed[i]).collect();
+    if shift && idx.len() == 2 {
+        let total = arc[m - 1];
+        let k = (total / spacing).round().max(3.0) as usize;
+        for j in 0..k {
+            push(at((total * (j as f64 + 0.5) / k as f64).min(total)));
         }
-        if fixed.last() != Some(&(m - 1)) {
-            fixed.push(m - 1);
+        return (out_p, out_n);
+    }
+    for w in idx.windows(2) {
+        let (s0, s1) = (arc[w[0]], arc[w[1]]);
+        if s1 - s0 <= 0.0 {
+            continue;
         }
-        for w in fixed.windows(2) {
-            let (s0, s1) = (arc[w[0]], arc[w[1]]);
-            if s1 - s0 <= 0.0 {
-                continue;
-            }
-            let k = ((s1 - s0) / spacing).round().max(1.0) as usize;
-            push((pts[w[0]].p, pts[w[0]].n));
-            for j in 1..k {
-                push(at(s0 + (s1 - s0) * j as f64 / k as f64));
-            }
+        let k = ((s1 - s0) / spacing).round().max(1.0) as usize;
+        push((pts[w[0]].p, pts[w[0]].n));
+        for j in 1..k {
+            push(at(s0 + (s1 - s0) * j as f64 / k as f64));
         }
-        if !closed {
-            push((pts[m - 1].p, pts[m - 1].n));
-        }
-    } else {
-        let k = (total / spacing).round().max(if closed { 3.0 } else { 1.0 }) as usize;
-        // Closed: start half a step from the first node so no sample falls on it.
-        let offset = if closed { 0.5 * total / k as f64 } else { 0.0 };
-        let count = if closed { k } else { k + 1 };
-        for j in 0..count {
-            push(at((offset + total * j as f64 / k as f64).min(total)));
-        }
-        if !closed {
-            // Keep the exact ends of an open curve: they lie on the boundary loops.
-            out_p[0] = pts[0].p;
-            out_p[count - 1] = pts[m - 1].p;
-        }
+    }
+    if !closed {
+        push((pts[m - 1].p, pts[m - 1].n));
     }
     (out_p, out_n)
 }

@@ -33,8 +33,13 @@ pub fn trim_dangling(g: &mut Graph) -> Result<Vec<Warning>> {
             continue;
         }
         let Some(&s) = incident[v].iter().find(|&&s| !removed[s]) else { continue };
-        removed[s] = true;
         let seg = &g.segments[s];
+        if seg.boundary {
+            // An unclosed boundary: cutting it back would leave an open border that bounds
+            // nothing; find_patches reports it, naming the curve.
+            continue;
+        }
+        removed[s] = true;
         let other = if seg.start == v { seg.end } else { seg.start };
         valence[v] -= 1;
         valence[other] -= 1;
@@ -82,6 +87,17 @@ pub fn trim_dangling(g: &mut Graph) -> Result<Vec<Warning>> {
             warnings.iter().map(|w| w.0.split(" (").next().unwrap_or("").to_string()).collect::<Vec<_>>().join(", ")
         )));
     }
+    let gone: Vec<usize> = (0..ns).filter(|&s| removed[s]).collect();
+    remove_segments(g, &gone);
+    Ok(warnings)
+}
+
+/// Removes segments `remove` from `g` and the nodes no kept segment uses, renumbering both.
+pub fn remove_segments(g: &mut Graph, remove: &[usize]) {
+    let mut removed = vec![false; g.segments.len()];
+    for &s in remove {
+        removed[s] = true;
+    }
     // Renumber: keep nodes used by a kept segment.
     let mut new_id = vec![usize::MAX; g.nodes.len()];
     let mut nodes = Vec::new();
@@ -110,5 +126,4 @@ pub fn trim_dangling(g: &mut Graph) -> Result<Vec<Warning>> {
     }
     g.nodes = nodes;
     g.segments = segments;
-    Ok(warnings)
 }
