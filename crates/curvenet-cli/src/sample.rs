@@ -82,6 +82,9 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
             curvenet::sampling::MAX_PLANE_MOVES
         );
     }
+    if r.small_holes > 0 {
+        dropped += &format!("; covered {} hole(s) smaller than 3 sample spacings", r.small_holes);
+    }
     if r.trimmed > 0 {
         dropped += &format!("; cut back {} section end(s) that ran along the boundary", r.trimmed);
     }

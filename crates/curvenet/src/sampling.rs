@@ -106,6 +106,8 @@ pub struct SampleReport {
     /// Sections left out because they still crossed another curve at a shallow angle (or
     /// twice, or nearly) after the plane moves.
     pub dropped_bad: usize,
+    /// Boundary loops left out because they are smaller than 3 sample spacings across.
+    pub small_holes: usize,
 }
 
 /// A sample of a polyline before resampling: position, normal, and whether it is a crossing
@@ -667,6 +669,12 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
                 continue;
             }
         }
+        // A boundary loop around a hole smaller than a few sample spacings cannot be sampled
+        // as a curve (it would run alongside itself): the hole is left out (covered).
+        if t.boundary && Aabb::of(t.samples.iter().map(|r| r.p)).diagonal() < 3.0 * spacing {
+            report.small_holes += 1;
+            continue;
+        }
         // Meets another curve: a crossing inside, or (boundary loops) a section end.
         let interior_nodes = t.samples.iter().filter(|s| s.node).count();
         let meets = if t.boundary || t.closed { interior_nodes > 0 } else { interior_nodes > 2 };
@@ -680,6 +688,12 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         }
         let (mut points, mut normals) = resample(&t.samples, t.closed, spacing, opts.shared_nodes);
         report.hairpins += remove_hairpins(&mut points, &mut normals, t.closed, near);
+        // A small boundary loop whose sides come within `near` of each other (a slit-shaped
+        // hole) would run alongside itself: the hole is left out (covered).
+        if t.boundary && points.len() <= 40 && thin_loop(&points, near) {
+            report.small_holes += 1;
+            continue;
+        }
         let need = if t.closed { 3 } else { 2 };
         if points.len() < need {
             continue;
@@ -1068,6 +1082,25 @@ fn trim_along(
     samples.drain(0..k - 1);
     samples[0] = end;
     Some(e)
+}
+
+/// A closed polyline two of whose non-adjacent edges come within `tol` of each other.
+fn thin_loop(points: &[DVec3], tol: f64) -> bool {
+    let m = points.len();
+    (0..m).any(|i| {
+        (i + 2..m).any(|j| {
+            if (j + 1) % m == i {
+                return false;
+            }
+            let (s, t) = crate::geom::closest_params_segment_segment(
+                points[i],
+                points[(i + 1) % m],
+                points[j],
+                points[(j + 1) % m],
+            );
+            points[i].lerp(points[(i + 1) % m], s).distance(points[j].lerp(points[(j + 1) % m], t)) <= tol
+        })
+    })
 }
 
 /// Cuts hairpins off a resampled curve: where the curve comes back within `tol` of itself
