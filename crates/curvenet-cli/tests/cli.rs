@@ -203,6 +203,22 @@ fn non_manifold_networks_name_the_node_or_segment() {
             DVec3::new(r * t.cos(), r * t.sin(), 0.3 * t.sin())
         })
         .collect();
+    // Issue 5: an unclosed boundary curve is rejected, naming the curve.
+    let mut net = curvenet::examples::example("saddle").unwrap();
+    let b = net.curves.iter().position(|c| c.boundary).unwrap();
+    let c = &mut net.curves[b];
+    let keep = c.points.len() * 3 / 4;
+    c.points.truncate(keep);
+    c.normals.truncate(keep);
+    c.closed = false;
+    expect_failure(
+        "open-boundary",
+        "n.json",
+        &json_of(&net),
+        1,
+        &[&format!("curve {b}"), "open boundary curve must be closed or end on another curve"],
+    );
+
     // Issue 5: the fold is detected and the patch triangulated on a fallback domain.
     let net = Network { curves: vec![curve(pts, vec![DVec3::Z; 200], true, true)], snap: None };
     expect_success_with_warnings("self-crossing", &json_of(&net), &["patch 0", "folds over", "fallback domain"]);

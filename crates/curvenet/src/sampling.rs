@@ -608,7 +608,7 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
                 let mut end_edges = [cuts[ci0].edges[k0], cuts[ci].edges[1 - enter]];
                 if opts.boundary {
                     for side in 0..2 {
-                        if !edge_faces.get(&end_edges[side]).is_some_and(|f| f.len() == 1) {
+                        if edge_faces.get(&end_edges[side]).is_none_or(|f| f.len() != 1) {
                             continue;
                         }
                         if side == 1 {

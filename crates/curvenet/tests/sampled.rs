@@ -95,9 +95,9 @@ fn real_meshes_when_present() {
         eprintln!("skipped: {} not found", dir.display());
         return;
     }
-    for name in ["bumpy-cube.obj", "fandisk.off"] {
+    for (name, planes) in [("bumpy-cube.obj", 6), ("fandisk.off", 6), ("beetle.off", 8)] {
         let m = curvenet::io::read_mesh(&dir.join(name)).unwrap();
-        let (rel, _) = sample_and_measure(&m.positions, &m.faces, 6, 10000);
+        let (rel, _) = sample_and_measure(&m.positions, &m.faces, planes, 10000);
         eprintln!("{name}: RMS {:.3}% of the diagonal", 100.0 * rel);
         assert!(rel <= 0.005, "{name}: RMS {:.3}% of the diagonal", 100.0 * rel);
     }
