@@ -539,6 +539,14 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     let mut ends_on_boundary: HashMap<(u32, u32), Vec<Raw>> = HashMap::new();
     let mut report_trimmed = 0;
     let boundary_grid = BoundaryGrid::new(positions, &edge_faces, 3.0 * snap);
+    // Boundary loop of each boundary vertex (components of the boundary edges).
+    let mut loop_uf = crate::topology::UnionFind::new(positions.len());
+    for (e, fs) in &edge_faces {
+        if fs.len() == 1 {
+            loop_uf.union(e.0 as usize, e.1 as usize);
+        }
+    }
+    let loop_of: Vec<usize> = (0..positions.len()).map(|v| loop_uf.find(v)).collect();
     let mut cuts_of_plane: Vec<Vec<usize>> = vec![Vec::new(); planes.len()];
     for (ci, c) in cuts.iter().enumerate() {
         cuts_of_plane[c.plane].push(ci);
@@ -614,7 +622,15 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
                         if side == 1 {
                             samples.reverse();
                         }
-                        if let Some(e) = trim_along(&mut samples, &boundary_grid, 3.0 * snap, positions, &normals) {
+                        let same_loop = loop_of[end_edges[side].0 as usize];
+                        if let Some(e) = trim_along(
+                            &mut samples,
+                            &boundary_grid,
+                            3.0 * snap,
+                            positions,
+                            &normals,
+                            &|e: (u32, u32)| loop_of[e.0 as usize] == same_loop,
+                        ) {
                             end_edges[side] = e;
                             report_trimmed += 1;
                         }
@@ -658,8 +674,34 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     }
     let mut report =
         SampleReport { spacing, crossings, pinches, zipped, unresolved, trimmed: report_trimmed, ..Default::default() };
+    // Two section ends on the boundary closer than `gap` (the boundary nearly touching itself,
+    // or a cut-back end moved next to another one): the pipeline would merge them into a node
+    // with too many boundary ends. The shorter of the two pieces is left out.
+    let ends: Vec<(usize, DVec3, f64)> = traced
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| !t.closed && t.samples.len() >= 2)
+        .flat_map(|(i, t)| {
+            let len: f64 = t.samples.windows(2).map(|w| w[0].p.distance(w[1].p)).sum();
+            [(i, t.samples[0].p, len), (i, t.samples[t.samples.len() - 1].p, len)]
+        })
+        .collect();
+    let mut crowded = vec![false; traced.len()];
+    for (a, ea) in ends.iter().enumerate() {
+        for eb in &ends[a + 1..] {
+            if ea.0 != eb.0 && ea.1.distance(eb.1) <= gap && !crowded[ea.0] && !crowded[eb.0] {
+                crowded[if ea.2 <= eb.2 { ea.0 } else { eb.0 }] = true;
+            }
+        }
+    }
     let mut curves = Vec::new();
-    for t in traced.into_iter().chain(boundary_loops) {
+    for (ti, t) in
+        traced.into_iter().enumerate().map(|(i, t)| (Some(i), t)).chain(boundary_loops.into_iter().map(|t| (None, t)))
+    {
+        if ti.is_some_and(|i| crowded[i]) {
+            report.dropped_bad += 1;
+            continue;
+        }
         // A section still in a bad crossing after the plane moves is left out.
         if let Some(p) = t.plane {
             let bad_here =
@@ -1053,7 +1095,8 @@ impl BoundaryGrid {
 /// A section that ends on the mesh boundary but runs along it first (closer than `band` to
 /// it) would be snapped onto the boundary curve over that stretch by the pipeline: its first
 /// samples within the band are removed and the section ends instead at the boundary point
-/// closest to its first sample outside the band (a short link across to the boundary).
+/// closest to its first sample outside the band (a short link across to the boundary), if
+/// that point is on the same boundary loop (`on_same_loop`).
 /// Returns the boundary edge of the new end, or `None` when nothing was cut.
 fn trim_along(
     samples: &mut Vec<Raw>,
@@ -1061,6 +1104,7 @@ fn trim_along(
     band: f64,
     positions: &[DVec3],
     normals: &[DVec3],
+    on_same_loop: &dyn Fn((u32, u32)) -> bool,
 ) -> Option<(u32, u32)> {
     // The end point itself is on the boundary; look at the following samples.
     let mut k = 1;
@@ -1076,6 +1120,10 @@ fn trim_along(
         return None;
     }
     let (_, e, t) = grid.closest(positions, samples[k - 1].p)?;
+    // Across to another boundary loop would span a hole: keep the section as it is.
+    if !on_same_loop(e) {
+        return None;
+    }
     let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
     let n = normals[e.0 as usize].lerp(normals[e.1 as usize], t);
     let end = Raw { p: a.lerp(b, t), n, node: false };
