@@ -17,6 +17,7 @@ mod fit;
 mod inflate;
 mod options;
 mod render;
+mod sample;
 mod study;
 mod surface;
 
@@ -67,6 +68,8 @@ enum Command {
     /// Measure a mesh against a ground truth: distances, normal angles, N* deviation ([CG] §4.3).
     #[command(after_help = eval::EVAL_HELP)]
     Eval(eval::EvalArgs),
+    /// Build a curve network on a triangle mesh: plane sections with normals from the mesh.
+    Sample(sample::SampleArgs),
     /// Run the paper's experiments: convergence under refinement, the accuracy report.
     Study(study::StudyArgs),
     /// Time file-to-file runs of the bundled networks at several sizes (docs/performance.md).
@@ -89,6 +92,7 @@ fn main() -> ExitCode {
         Command::Example(a) => example::run(&a),
         Command::Demo(a) => demo::run(&a),
         Command::Eval(a) => eval::run(&a),
+        Command::Sample(a) => sample::run(&a),
         Command::Study(a) => study::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Render(a) => render::run(&a),

@@ -29,7 +29,8 @@
 //!
 //! [`pipeline`] runs them all: [`surface`] is the one-shot entry point; [`surfacer`] keeps the
 //! mesh and factorisations for fast re-solves with new normals; [`harmonic`] interpolates on a
-//! given mesh (libigl's `harmonic`).
+//! given mesh (libigl's `harmonic`). [`sampling`] builds test networks on triangle meshes
+//! (plane sections, `curvenet sample`).
 
 pub mod cauchy;
 pub mod clock;
@@ -49,6 +50,7 @@ pub mod operators;
 pub mod ordering;
 pub mod pipeline;
 pub mod render;
+pub mod sampling;
 pub mod solve;
 pub mod sparse;
 pub mod surfacer;

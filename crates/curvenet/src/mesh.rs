@@ -25,6 +25,9 @@ pub struct Mesh {
     pub planar: Vec<[DVec2; 3]>,
     /// Per face: index of its patch. `#F`.
     pub face_patch: Vec<u32>,
+    /// Patches whose planar projection folds over ([CG] §3.3): triangulated in the plane of
+    /// their vector area or on a convex (elliptic) domain instead.
+    pub fold_fallback: Vec<usize>,
     /// The Laplacian's sparsity pattern, computed on first use (the faces must not change
     /// afterwards).
     pub(crate) pattern: std::sync::OnceLock<std::sync::Arc<crate::operators::LaplacianPattern>>,

@@ -16,8 +16,9 @@ use crate::methods::{GuideArea, Method, SolveTimings, Weighting};
 use crate::network::Network;
 use crate::operators::{cotan_operators, normals_and_mean_curvature, Metric};
 use crate::tessellate::{flatten_patches, tessellate, tessellate_conformal, VERTICES_PER_AREA};
+use crate::topology::cycles::find_patches_open;
 use crate::topology::cycles::half_edge_samples;
-use crate::topology::{find_nodes, find_patches, Graph, Patch};
+use crate::topology::{find_nodes, trim_dangling, Graph, Patch};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::borrow::Cow;
@@ -285,6 +286,20 @@ impl SizeModel {
     }
 }
 
+/// One warning per patch of `mesh` whose planar projection folds over (triangulated in a
+/// fallback domain, see [`crate::tessellate`]).
+fn fold_warnings(mesh: &Mesh) -> Vec<Warning> {
+    mesh.fold_fallback
+        .iter()
+        .map(|p| {
+            Warning(format!(
+                "patch {p}: its planar projection folds over (a deep or twisted cycle); it was triangulated on a \
+                 fallback domain (the plane of its vector area, or an ellipse its border is mapped onto by arc length)"
+            ))
+        })
+        .collect()
+}
+
 /// Surfaces `network`, reporting each finished stage to `progress(stage, seconds, detail)`.
 pub fn surface_with_progress(
     network: &Network,
@@ -360,8 +375,9 @@ pub(crate) fn prepare(
     let clock = Instant::now();
     let (net, mut warnings) = network.validated()?;
     let snap = options.snap.or(net.snap).unwrap_or_else(|| net.snap_tolerance());
-    let (g, w) = find_nodes(&net, snap)?;
+    let (mut g, w) = find_nodes(&net, snap)?;
     warnings.extend(w);
+    warnings.extend(trim_dangling(&mut g)?);
     timings.nodes = clock.elapsed().as_secs_f64();
     progress("nodes", timings.nodes, &format!("{} nodes, {} segments", g.nodes.len(), g.segments.len()));
 
@@ -371,7 +387,8 @@ pub(crate) fn prepare(
         g.curves.par_iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
     let spline_time = clock.elapsed().as_secs_f64();
     let clock = Instant::now();
-    let patches = find_patches(&g, &splines)?;
+    let (patches, w) = find_patches_open(&mut g, &splines)?;
+    warnings.extend(w);
     timings.cycles = clock.elapsed().as_secs_f64();
     progress("cycles", timings.cycles, &format!("{} patches", patches.len()));
 
@@ -405,6 +422,7 @@ pub(crate) fn prepare(
     let mesh = match options.patching {
         Patching::Planar => {
             let (res, mesh) = planar_stage(d, &mut timings)?;
+            warnings.extend(fold_warnings(&mesh));
             progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
             progress(
                 "tessellate",
@@ -418,6 +436,7 @@ pub(crate) fn prepare(
             // projections, then each patch re-tessellated in a conformal flattening of it.
             let d0 = 2.0 * d;
             let (coarse_res, coarse) = planar_stage(d0, &mut timings)?;
+            warnings.extend(fold_warnings(&coarse));
             // The first solution only shapes the flattening: normal-control whatever the method.
             let ops = cotan_operators(&coarse, Metric::Planar, &coarse.positions);
             let first = normal_control(
@@ -443,6 +462,7 @@ pub(crate) fn prepare(
             let clock = Instant::now();
             let (mesh, kept) = tessellate_conformal(&g, &res, &patches, d, &coarse_res, &flat)?;
             timings.tessellate += clock.elapsed().as_secs_f64();
+            warnings.extend(fold_warnings(&mesh).into_iter().filter(|w| !warnings.contains(w)).collect::<Vec<_>>());
             for p in kept {
                 warnings.push(Warning(format!(
                     "patch {p}: its conformal flattening folds over; it keeps the planar projection"

@@ -33,6 +33,7 @@ fn mesh_of(p: Vec<DVec3>, t: Vec<[u32; 3]>) -> Mesh {
         num_curve: 0,
         curve_normals: vec![],
         pattern: Default::default(),
+        fold_fallback: vec![],
     }
 }
 

@@ -106,6 +106,24 @@ fn conormal_score(p: &[DVec3], n: &[DVec3], dir: impl Fn(DVec3) -> DVec3) -> f64
 /// on both sides or on neither, a patch that meets itself along a segment, boundary curves that
 /// form something other than a loop, a lone loop whose inside cannot be told from the normals.
 pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
+    match find_patches_or_slits(g, splines)? {
+        Ok(patches) => Ok(patches),
+        Err(slits) => Err(Error::Topology(format!(
+            "{} has the same patch on both sides: a curve that dangles into a patch or cuts it open \
+             cannot be surfaced; remove it or connect both of its ends to other curves (if it crosses \
+             another curve without meeting it at a node, raise the snapping tolerance)",
+            g.describe_segment(slits[0])
+        ))),
+    }
+}
+
+/// [`find_patches`], except that segments with the same patch on both sides (slits: a curve
+/// that cuts into a patch, or a bridge left by snapping) are returned as `Ok(Err(segments))`
+/// instead of an error, for [`find_patches_open`] to leave them out.
+pub fn find_patches_or_slits(
+    g: &Graph,
+    splines: &[CurveSpline],
+) -> Result<std::result::Result<Vec<Patch>, Vec<usize>>> {
     let ns = g.segments.len();
     // Segment ends at each node: (segment, at_start).
     let mut ends: Vec<Vec<(usize, bool)>> = vec![Vec::new(); g.nodes.len()];
@@ -219,6 +237,7 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
     }
 
     let mut patches = Vec::new();
+    let mut slits = Vec::new();
     let mut lone_faces: Vec<Vec<usize>> = vec![Vec::new(); g.nodes.len()]; // by component root
     for (f, face) in faces.iter().enumerate() {
         let root = seg_root[face[0].segment];
@@ -232,15 +251,15 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
         // A patch must not meet itself along a segment.
         for (i, h) in face.iter().enumerate() {
             if face[i + 1..].iter().any(|k| k.segment == h.segment) {
-                return Err(Error::Topology(format!(
-                    "{} has the same patch on both sides: a curve that dangles into a patch or cuts it open \
-                     cannot be surfaced; remove it or connect both of its ends to other curves (if it crosses \
-                     another curve without meeting it at a node, raise the snapping tolerance)",
-                    g.describe_segment(h.segment)
-                )));
+                slits.push(h.segment);
             }
         }
         patches.push(Patch::Disk(face.clone()));
+    }
+    if !slits.is_empty() {
+        slits.sort_unstable();
+        slits.dedup();
+        return Ok(Err(slits));
     }
     // Every boundary segment in a part with interior curves bounds exactly one patch.
     for (s, seg) in g.segments.iter().enumerate() {
@@ -356,5 +375,37 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
         };
         patches.push(Patch::Disk(if first { l.faces[0].clone() } else { l.faces[1].clone() }));
     }
-    Ok(patches)
+    Ok(Ok(patches))
+}
+
+/// Patches of an open network: [`find_patches_or_slits`], leaving out the slits (segments with
+/// the same patch on both sides) and then whatever dangles ([`super::open::trim_dangling`]),
+/// until the rest bounds patches. Each curve left out or shortened is named in a warning.
+pub fn find_patches_open(g: &mut Graph, splines: &[CurveSpline]) -> Result<(Vec<Patch>, Vec<crate::error::Warning>)> {
+    let mut warnings = Vec::new();
+    for _ in 0..64 {
+        match find_patches_or_slits(g, splines)? {
+            Ok(patches) => return Ok((patches, warnings)),
+            Err(slits) => {
+                // A boundary segment bounds the surface: leaving it out would open a hole.
+                if let Some(&s) = slits.iter().find(|&&s| g.segments[s].boundary) {
+                    return Err(Error::Topology(format!(
+                        "{} is a boundary segment with the same patch on both sides: the boundary cuts into the \
+                         surface; remove its boundary tag or connect it",
+                        g.describe_segment(s)
+                    )));
+                }
+                for &s in slits.iter().take(10) {
+                    warnings.push(crate::error::Warning(format!(
+                        "{} has the same patch on both sides (a curve that cuts into a patch, or curves snapped \
+                         into a bridge): it was left out of the surface",
+                        g.describe_segment(s)
+                    )));
+                }
+                super::open::remove_segments(g, &slits);
+                warnings.extend(super::open::trim_dangling(g)?);
+            }
+        }
+    }
+    Err(Error::Topology("internal error: leaving out slits did not converge".into()))
 }

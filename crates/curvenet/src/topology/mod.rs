@@ -1,11 +1,14 @@
 //! Topology of the network: where curves meet ([`nodes`]) and which cycles of segments bound
-//! the patches of the surface ([`cycles`], [CG] §3.2).
+//! the patches of the surface ([`cycles`], [CG] §3.2); dangling parts of open networks are
+//! trimmed first ([`open`]).
 
 pub mod cycles;
 pub mod nodes;
+pub mod open;
 
 pub use cycles::{find_patches, HalfEdge, Patch};
 pub use nodes::{find_nodes, Graph, Node, Segment, SplitCurve};
+pub use open::trim_dangling;
 
 /// Disjoint sets over `0..n` with path halving; roots are the smallest members.
 pub(crate) struct UnionFind(Vec<usize>);

@@ -331,20 +331,35 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
                     continue;
                 }
                 for side in [-1.0, 1.0] {
-                    let Some(probe) =
-                        polyline_at_arc(&curves[pa.0].points, &arcs[pa.0], curves[pa.0].closed, pa.1 + side * delta)
-                    else {
-                        continue;
-                    };
-                    let d = polyline_distance(
-                        &curves[pb.0].points,
-                        &arcs[pb.0],
-                        curves[pb.0].closed,
-                        pb.1,
-                        2.0 * delta,
-                        probe,
-                    );
-                    if d <= snap {
+                    // Overlapping curves stay together: within the tolerance at every probe
+                    // (a quarter, half and all of OVERLAP_PROBE tolerances along). A curve
+                    // that crosses again further on is close at one probe only.
+                    let mut together = true;
+                    let mut probed = false;
+                    for frac in [0.25, 0.5, 1.0] {
+                        let Some(probe) = polyline_at_arc(
+                            &curves[pa.0].points,
+                            &arcs[pa.0],
+                            curves[pa.0].closed,
+                            pa.1 + side * frac * delta,
+                        ) else {
+                            break;
+                        };
+                        probed = true;
+                        let d = polyline_distance(
+                            &curves[pb.0].points,
+                            &arcs[pb.0],
+                            curves[pb.0].closed,
+                            pb.1,
+                            2.0 * frac * delta,
+                            probe,
+                        );
+                        if d > snap {
+                            together = false;
+                            break;
+                        }
+                    }
+                    if probed && together {
                         return Err(Error::Input(format!(
                             "{} runs within the snapping tolerance ({snap:.3e}) of {} near {}: overlapping or coincident \
                              curves (or curves touching at a very shallow angle) cannot be surfaced; remove the duplicate \

@@ -1,0 +1,107 @@
+//! `curvenet sample`: build a curve network on a triangle mesh (plane sections with normals
+//! from the mesh; see [`curvenet::sampling`]).
+
+use clap::Args;
+use curvenet::io::{read_mesh, write_network};
+use curvenet::sampling::{sample_mesh, SampleOptions};
+use curvenet::Error;
+use std::io::Write;
+use std::path::PathBuf;
+
+#[derive(Args)]
+pub struct SampleArgs {
+    /// The mesh to sample (.obj, .ply, .off), triangles counter-clockwise seen from outside.
+    mesh: PathBuf,
+    /// Output network file (.json, .obj, .net).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Section planes per axis, X,Y,Z (a single number for all three).
+    #[arg(long, value_name = "X,Y,Z", default_value = "8,8,8")]
+    planes: String,
+    /// Distance between samples along the curves (default: 1/200 of the bounding-box diagonal).
+    #[arg(long, value_name = "D")]
+    spacing: Option<f64>,
+    /// Sensor-like noise: Gaussian, σ = F × the sample spacing on positions, σ = F on the unit
+    /// normals.
+    #[arg(long, value_name = "F", default_value_t = 0.0)]
+    noise: f64,
+    /// Seed of the noise.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Leave out the exact crossing samples: each curve is sampled uniformly along its length and
+    /// crossings fall between samples, as with sensors.
+    #[arg(long)]
+    no_shared_nodes: bool,
+    /// Leave out the mesh's boundary loops.
+    #[arg(long)]
+    no_boundary: bool,
+    /// The plane directions are the coordinate axes turned by DEG degrees about (1,2,3)
+    /// (0: axis-aligned; then walls parallel to an axis are cut along coincident curves).
+    #[arg(long, value_name = "DEG", default_value_t = SampleOptions::DEFAULT_TILT_DEG)]
+    tilt: f64,
+}
+
+fn parse_planes(s: &str) -> Result<[usize; 3], Error> {
+    let bad = || Error::Usage(format!("--planes {s}: give three counts X,Y,Z (e.g. 8,8,8) or one count"));
+    let v: Vec<usize> = s.split(',').map(|t| t.trim().parse::<usize>().map_err(|_| bad())).collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [n] => Ok([*n; 3]),
+        [x, y, z] => Ok([*x, *y, *z]),
+        _ => Err(bad()),
+    }
+}
+
+pub fn run(a: &SampleArgs) -> Result<(), Error> {
+    curvenet::io::NetworkFormat::from_path(&a.output)?;
+    let opts = SampleOptions {
+        planes: parse_planes(&a.planes)?,
+        spacing: a.spacing,
+        noise: a.noise,
+        seed: a.seed,
+        shared_nodes: !a.no_shared_nodes,
+        boundary: !a.no_boundary,
+        tilt: a.tilt,
+    };
+    let mesh = read_mesh(&a.mesh)?;
+    let (net, r) = sample_mesh(&mesh.positions, &mesh.faces, &opts)?;
+    write_network(&a.output, &net)?;
+    let mut dropped = String::new();
+    if r.dropped_sections + r.dropped_boundary_loops > 0 {
+        dropped = format!(
+            "; left out {} section(s) and {} boundary loop(s) that meet no other curve",
+            r.dropped_sections, r.dropped_boundary_loops
+        );
+    }
+    if r.zipped > 0 {
+        dropped += &format!("; welded {} boundary vertex pair(s) across cracks", r.zipped);
+    }
+    if r.dropped_bad > 0 {
+        dropped += &format!(
+            "; left out {} section(s) still crossing another curve at a shallow angle or twice nearby after {} plane moves",
+            r.dropped_bad,
+            curvenet::sampling::MAX_PLANE_MOVES
+        );
+    }
+    if r.small_holes > 0 {
+        dropped += &format!("; covered {} hole(s) smaller than 3 sample spacings", r.small_holes);
+    }
+    if r.trimmed > 0 {
+        dropped += &format!("; cut back {} section end(s) that ran along the boundary", r.trimmed);
+    }
+    if r.hairpins > 0 {
+        dropped += &format!("; cut {} hairpin(s) where a curve came back along itself", r.hairpins);
+    }
+    if r.pinches > 0 {
+        dropped += &format!("; split {} pinch vertex(es) where the mesh boundary touches itself", r.pinches);
+    }
+    out!(
+        "{}: {} sections, {} boundary loops, {} crossings, {} samples, spacing {:.4e}{dropped}",
+        a.output.display(),
+        r.sections,
+        r.boundary_loops,
+        r.crossings,
+        net.num_samples(),
+        r.spacing
+    );
+    Ok(())
+}

@@ -1,0 +1,129 @@
+//! Open networks ([CG] §5 lists them as a limitation): curves, or parts of curves, that bound
+//! no patch. A *dangling* segment has an end where no other curve meets it (a node of valence
+//! 1): it cannot bound a patch on either side. [`trim_dangling`] removes such segments one by
+//! one (a dangling chain is eaten back to the first node where curves really meet), and lone
+//! closed curves that are not boundary curves and meet no other curve, and reports each curve
+//! it shortened or left out as a [`Warning`] naming the curve and where its kept part ends.
+//! The rest of the network is surfaced as usual.
+
+use super::nodes::Graph;
+use crate::error::{Error, Result, Warning};
+use crate::geom::fmt_point;
+
+/// Removes dangling segments (repeatedly) and lone interior loops from `g`, renumbering its
+/// nodes and segments. Returns one warning per curve affected.
+///
+/// Errors ([`Error::Topology`]): nothing is left (no two curves of the network meet).
+pub fn trim_dangling(g: &mut Graph) -> Result<Vec<Warning>> {
+    let ns = g.segments.len();
+    let mut valence = vec![0usize; g.nodes.len()];
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); g.nodes.len()];
+    for (s, seg) in g.segments.iter().enumerate() {
+        valence[seg.start] += 1;
+        valence[seg.end] += 1;
+        incident[seg.start].push(s);
+        incident[seg.end].push(s);
+    }
+    let mut removed = vec![false; ns];
+    // Per curve: the node where its kept part now ends (the last node a trim stopped at).
+    let mut stop_at: Vec<Option<usize>> = vec![None; g.curves.len()];
+    let mut queue: Vec<usize> = (0..g.nodes.len()).filter(|&v| valence[v] == 1).collect();
+    while let Some(v) = queue.pop() {
+        if valence[v] != 1 {
+            continue;
+        }
+        let Some(&s) = incident[v].iter().find(|&&s| !removed[s]) else { continue };
+        let seg = &g.segments[s];
+        if seg.boundary {
+            // An unclosed boundary: cutting it back would leave an open border that bounds
+            // nothing; find_patches reports it, naming the curve.
+            continue;
+        }
+        removed[s] = true;
+        let other = if seg.start == v { seg.end } else { seg.start };
+        valence[v] -= 1;
+        valence[other] -= 1;
+        stop_at[seg.curve] = Some(other);
+        if valence[other] == 1 {
+            queue.push(other);
+        }
+    }
+    // Lone loops: a closed non-boundary curve whose only node is its own (one loop segment).
+    for (s, seg) in g.segments.iter().enumerate() {
+        if !removed[s] && !seg.boundary && seg.start == seg.end && valence[seg.start] == 2 {
+            removed[s] = true;
+            valence[seg.start] = 0;
+            stop_at[seg.curve] = Some(seg.start);
+        }
+    }
+    if !removed.iter().any(|&r| r) {
+        return Ok(Vec::new());
+    }
+    let mut warnings = Vec::new();
+    for (c, stop) in stop_at.iter().enumerate() {
+        let Some(v) = stop else { continue };
+        let kept = g.segments.iter().enumerate().any(|(s, seg)| seg.curve == c && !removed[s]);
+        let what = if g.curves[c].boundary { "boundary curve" } else { "curve" };
+        warnings.push(Warning(if kept {
+            format!(
+                "{} ({what}) has a dangling end that meets no other curve: the part beyond {} at {} bounds no \
+                 patch and was left out of the surface",
+                g.labels[c],
+                "node",
+                fmt_point(g.nodes[*v].position)
+            )
+        } else {
+            format!(
+                "{} ({what}) does not meet other curves so as to bound a patch (near {}); it was left out of the surface",
+                g.labels[c],
+                fmt_point(g.nodes[*v].position)
+            )
+        }));
+    }
+    if removed.iter().all(|&r| r) {
+        return Err(Error::Topology(format!(
+            "no curves of the network bound a patch: every curve dangles or meets no other ({}). Curves must \
+             cross each other (or end on each other) to enclose patches",
+            warnings.iter().map(|w| w.0.split(" (").next().unwrap_or("").to_string()).collect::<Vec<_>>().join(", ")
+        )));
+    }
+    let gone: Vec<usize> = (0..ns).filter(|&s| removed[s]).collect();
+    remove_segments(g, &gone);
+    Ok(warnings)
+}
+
+/// Removes segments `remove` from `g` and the nodes no kept segment uses, renumbering both.
+pub fn remove_segments(g: &mut Graph, remove: &[usize]) {
+    let mut removed = vec![false; g.segments.len()];
+    for &s in remove {
+        removed[s] = true;
+    }
+    // Renumber: keep nodes used by a kept segment.
+    let mut new_id = vec![usize::MAX; g.nodes.len()];
+    let mut nodes = Vec::new();
+    for seg in g.segments.iter().zip(&removed).filter(|(_, r)| !**r).map(|(s, _)| s) {
+        for v in [seg.start, seg.end] {
+            if new_id[v] == usize::MAX {
+                new_id[v] = nodes.len();
+                nodes.push(g.nodes[v].clone());
+            }
+        }
+    }
+    let segments = g
+        .segments
+        .iter()
+        .zip(&removed)
+        .filter(|(_, r)| !**r)
+        .map(|(s, _)| {
+            let mut s = s.clone();
+            s.start = new_id[s.start];
+            s.end = new_id[s.end];
+            s
+        })
+        .collect();
+    for c in &mut g.curves {
+        c.nodes = c.nodes.iter().filter(|(_, v)| new_id[*v] != usize::MAX).map(|&(i, v)| (i, new_id[v])).collect();
+    }
+    g.nodes = nodes;
+    g.segments = segments;
+}

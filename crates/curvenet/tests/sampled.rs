@@ -1,0 +1,104 @@
+//! Networks sampled from meshes (`curvenet::sampling`, issue 5): plane sections with crossings
+//! between samples and 1% noise, surfaced and measured against the mesh they came from.
+
+use curvenet::geom::{Aabb, DVec3};
+use curvenet::metrics::{evaluate, Reference};
+use curvenet::sampling::{sample_mesh, SampleOptions};
+use curvenet::{surface, Options};
+use std::f64::consts::PI;
+
+/// A UV sphere (`rings` bands) whose radius is `1 + bump(θ, φ)`, optionally cut to `z > z_cut`.
+fn sphere_mesh(rings: usize, bump: impl Fn(f64, f64) -> f64, z_cut: Option<f64>) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let cols = 2 * rings;
+    let dir = |th: f64, ph: f64| DVec3::new(th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos());
+    let mut p = vec![DVec3::Z * (1.0 + bump(0.0, 0.0))];
+    for i in 1..rings {
+        let th = PI * i as f64 / rings as f64;
+        for j in 0..cols {
+            let ph = 2.0 * PI * j as f64 / cols as f64;
+            p.push(dir(th, ph) * (1.0 + bump(th, ph)));
+        }
+    }
+    p.push(-DVec3::Z * (1.0 + bump(PI, 0.0)));
+    let south = (p.len() - 1) as u32;
+    let at = |i: usize, j: usize| (1 + (i - 1) * cols + j % cols) as u32;
+    let mut f = Vec::new();
+    for j in 0..cols {
+        f.push([0, at(1, j), at(1, j + 1)]);
+        f.push([south, at(rings - 1, j + 1), at(rings - 1, j)]);
+    }
+    for i in 1..rings - 1 {
+        for j in 0..cols {
+            f.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            f.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    if let Some(z) = z_cut {
+        f.retain(|t| t.iter().all(|&v| p[v as usize].z > z));
+    }
+    (p, f)
+}
+
+/// Samples `mesh` (crossings between samples, 1% noise), surfaces it and returns the RMS
+/// distance of the free vertices to the mesh relative to its bounding-box diagonal, and the
+/// surface.
+fn sample_and_measure(p: &[DVec3], f: &[[u32; 3]], planes: usize, vertices: usize) -> (f64, curvenet::Surface) {
+    let opts = SampleOptions { planes: [planes; 3], shared_nodes: false, noise: 0.01, ..Default::default() };
+    let (net, _) = sample_mesh(p, f, &opts).expect("sampling");
+    let s = surface(&net, &Options { vertices: Some(vertices), ..Default::default() }).expect("surfacing");
+    let e = evaluate(
+        &s.mesh.positions,
+        &s.mesh.faces,
+        Some(&s.normals),
+        &s.curve_flags,
+        Reference::Mesh { positions: p, faces: f },
+        None,
+    );
+    let diag = Aabb::of(f.iter().flatten().map(|&v| p[v as usize])).diagonal();
+    (e.distance.rms / diag, s)
+}
+
+#[test]
+fn bumpy_sphere_sampled_with_noise_is_recovered_within_half_a_percent() {
+    let (p, f) = sphere_mesh(60, |th, ph| 0.08 * (3.0 * th).sin() * (4.0 * ph).cos(), None);
+    let (rel, s) = sample_and_measure(&p, &f, 5, 8000);
+    assert!(rel <= 0.005, "RMS {:.3}% of the diagonal", 100.0 * rel);
+    assert_eq!(s.stats.components, 1);
+}
+
+#[test]
+fn a_cap_with_its_boundary_loop_is_surfaced_with_a_free_border() {
+    let (p, f) = sphere_mesh(60, |_, _| 0.0, Some(0.0));
+    let (rel, s) = sample_and_measure(&p, &f, 4, 6000);
+    assert!(rel <= 0.005, "RMS {:.3}% of the diagonal", 100.0 * rel);
+    assert!(s.mesh.on_boundary.iter().any(|&b| b));
+}
+
+#[test]
+fn two_separate_spheres_are_two_components_of_one_surface() {
+    let (mut p, mut f) = sphere_mesh(40, |_, _| 0.0, None);
+    let (p2, f2) = sphere_mesh(40, |_, _| 0.0, None);
+    let base = p.len() as u32;
+    p.extend(p2.iter().map(|q| *q * 0.7 + DVec3::new(3.0, 0.0, 0.0)));
+    f.extend(f2.iter().map(|t| t.map(|v| v + base)));
+    let (rel, s) = sample_and_measure(&p, &f, 8, 8000);
+    assert_eq!(s.stats.components, 2);
+    assert!(rel <= 0.005, "RMS {:.3}% of the diagonal", 100.0 * rel);
+}
+
+/// The real meshes of `../shared/data` (see its README), when present: a smaller plane count
+/// than `bench/real_meshes.sh` to keep the test short.
+#[test]
+fn real_meshes_when_present() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
+    if !dir.exists() {
+        eprintln!("skipped: {} not found", dir.display());
+        return;
+    }
+    for (name, planes) in [("bumpy-cube.obj", 6), ("fandisk.off", 6), ("beetle.off", 8)] {
+        let m = curvenet::io::read_mesh(&dir.join(name)).unwrap();
+        let (rel, _) = sample_and_measure(&m.positions, &m.faces, planes, 10000);
+        eprintln!("{name}: RMS {:.3}% of the diagonal", 100.0 * rel);
+        assert!(rel <= 0.005, "{name}: RMS {:.3}% of the diagonal", 100.0 * rel);
+    }
+}
