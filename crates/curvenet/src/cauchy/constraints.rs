@@ -17,13 +17,13 @@
 
 use super::params::CauchyParams;
 use super::system::{MicroWeight, Role, Stencil, System};
+use crate::clock::Instant;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::mesh::Mesh;
 use crate::methods::{MethodResult, SolveTimings};
 use crate::operators::Operators;
 use serde_json::Value;
-use crate::clock::Instant;
 
 /// How a curve acts on the surface ([A11] §5).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]

@@ -16,13 +16,13 @@
 
 use super::reduce::GhostBasis;
 use super::system::{MicroWeight, Role, Stencil, System};
+use crate::clock::Instant;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::mesh::Mesh;
 use crate::operators::{cotan_operators, Metric};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
-use crate::clock::Instant;
 
 /// Options of [`fit`].
 #[derive(Clone, Debug, PartialEq)]
