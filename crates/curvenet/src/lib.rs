@@ -22,9 +22,12 @@
 //! 7. [`solve`]: sparse Cholesky, factor once and solve many; [`sparse`]: matrix assembly.
 //! 8. [`methods`]: normal-control ([CG] eq. 1–3), biharmonic, triharmonic.
 //! 9. [`metrics`]: distances to analytic ground truth; [`examples`]: analytic networks.
+//! 10. [`check`]: the invariants every output satisfies (finite, manifold, oriented, samples
+//!     on the surface), used by the tests and the fuzzers (`fuzz/`).
 //!
 //! [`pipeline`] runs them all: [`surface`] is the one-shot entry point.
 
+pub mod check;
 pub mod conformal;
 pub mod curves;
 pub mod error;
