@@ -354,7 +354,9 @@ pub fn surface_with_progress(
         let ops = cotan_operators(mesh, metric, metric_positions);
         st.operators += clock.elapsed().as_secs_f64();
         if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
-            return Err(Error::Numerical(format!("vertex {i} has zero area: degenerate triangles around it")));
+            let patch = mesh.faces.iter().position(|f| f.contains(&(i as u32))).map(|f| mesh.face_patch[f]);
+            let at = patch.map_or_else(String::new, |p| format!(" of patch {p}"));
+            return Err(Error::Numerical(format!("vertex {i}{at} has zero area: degenerate triangles around it")));
         }
         match options.method {
             Method::NormalControl => {
