@@ -163,9 +163,13 @@ pub fn fuzz_case(data: &[u8]) -> Option<(Network, crate::Options)> {
             let mut net = crate::examples::example(name)?;
             let keep = 4 + (head[1] % 16) as usize;
             for c in &mut net.curves {
-                let step = (c.points.len() / keep).max(1);
-                c.points = c.points.iter().step_by(step).copied().collect();
-                c.normals = c.normals.iter().step_by(step).copied().collect();
+                // Every `step`-th sample (a power of two, so that the bundled networks' crossings,
+                // at multiples of a power of two, stay samples), and an open curve's last one.
+                let len = c.points.len();
+                let step = 1usize << (len / keep).max(1).ilog2();
+                let kept = |k: usize| k % step == 0 || (!c.closed && k + 1 == len);
+                c.points = (0..len).filter(|&k| kept(k)).map(|k| c.points[k]).collect();
+                c.normals = (0..len).filter(|&k| kept(k)).map(|k| c.normals[k]).collect();
             }
             // Perturb: positions by up to `amp` of the spacing, normals by up to `amp`.
             let amp = [0.0, 0.01, 0.1, 0.5][(head[5] % 4) as usize];

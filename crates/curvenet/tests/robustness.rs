@@ -120,3 +120,79 @@ fn the_invariant_checker_catches_violations() {
     assert!(check_surface(&good, &far, snap, Constraints::Hard).join("").contains("curve 0, sample 3"));
     assert!(check_surface(&good, &far, snap, Constraints::Soft).is_empty());
 }
+
+// ---------------------------------------------------------------------------------------------
+// Fuzz regressions: inputs of the `pipeline` fuzz target (`fuzz/`), replayed through
+// `fuzz_case`. Each crash the fuzzers find is added here under a name saying what it exposed.
+
+/// What the `pipeline` fuzz target asserts, for one input.
+fn replay(data: &[u8]) -> Option<Result<usize, String>> {
+    let (net, options) = curvenet::check::fuzz_case(data)?;
+    Some(match curvenet::surface(&net, &options) {
+        Ok(s) => {
+            let hard = if options.soft.is_some() { Constraints::Soft } else { Constraints::Hard };
+            let problems = check_surface(&s, &net, net.snap_tolerance(), hard);
+            assert!(problems.is_empty(), "{data:?}: {problems:?}");
+            Ok(s.mesh.num_vertices())
+        }
+        Err(e) => {
+            assert!(!e.to_string().is_empty());
+            Err(e.to_string())
+        }
+    })
+}
+
+/// One input per template of `fuzz_case` (sphere, cube, saddle, cylinder, free-form) and per
+/// method: the fuzz target's harness works in the normal suite, and the clean templates surface.
+#[test]
+fn fuzz_harness_smoke() {
+    for template in 0..5u8 {
+        for method in [4u8, 0, 1, 2, 3] {
+            let mut data = vec![template, 6, method, 0, 12, 0, 7, 0];
+            data.extend((0..64).map(|k| (k * 37 % 251) as u8));
+            let r = replay(&data).expect("long enough");
+            if template < 4 {
+                assert!(r.is_ok(), "template {template}, method {method}: {r:?}");
+            }
+        }
+    }
+}
+
+/// Found by the `pipeline` fuzzer (artifact `pipeline-crash-5f69f59d…`, 2026-11-24): the sphere
+/// subsampled to ~21 samples per curve, scaled by 1e-7, samples moved by up to half the spacing
+/// and normals by up to 0.5, planar patching, soft constraints, one 3D iteration: the output has
+/// an edge shared by three faces. Kept as a network file (independent of `fuzz_case` changes).
+/// OPEN: the tessellation (geometry half of issue 5) must fix it; ignored until then.
+#[test]
+#[ignore = "open fuzz finding: non-manifold edge from the planar tessellation of a noisy coarse sphere"]
+fn fuzz_non_manifold_edge_planar_soft() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/fuzz/non-manifold-edge-planar-soft.json");
+    let net = curvenet::io::read_network(&path).unwrap();
+    let options = Options {
+        soft: Some(2.0),
+        patching: curvenet::Patching::Planar,
+        iterations: 1,
+        vertices: Some(1000),
+        ..Options::default()
+    };
+    match curvenet::surface(&net, &options) {
+        Ok(s) => {
+            let problems = check_surface(&s, &net, net.snap_tolerance(), Constraints::Soft);
+            assert!(problems.is_empty(), "{problems:?}");
+        }
+        Err(e) => assert!(!e.to_string().is_empty()),
+    }
+}
+
+/// Found by the `read_mesh` fuzzer (slow unit, 463 s for 117 bytes): a PLY header declaring
+/// 1.4e11 records of an element with no properties. Must answer at once.
+#[test]
+fn fuzz_ply_element_without_properties_is_fast() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/fuzz/ply-element-without-properties.bin");
+    let data = std::fs::read(path).unwrap();
+    let clock = std::time::Instant::now();
+    let _ = curvenet::io::parse_mesh(&data[1..], std::path::Path::new("m.ply"), "m.ply");
+    assert!(clock.elapsed().as_secs_f64() < 1.0, "took {:?}", clock.elapsed());
+}
