@@ -216,3 +216,29 @@ pub fn fuzz_case(data: &[u8]) -> Option<(Network, crate::Options)> {
     };
     Some((net, options))
 }
+
+/// The first edge of `faces` that breaks edge-manifoldness or orientation (used by more than
+/// two faces, or twice in the same direction), with the faces on it; `None` when there is none.
+/// The pipeline runs this on every tessellation (invariants 3–4) so that overlapping patches
+/// are an error, never a written non-manifold mesh.
+pub fn bad_edge(faces: &[[u32; 3]]) -> Option<([u32; 2], Vec<usize>)> {
+    let mut edges: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(3 * faces.len());
+    let mut bad = None;
+    for f in faces {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            let e = edges.entry((a.min(b), a.max(b))).or_insert((0, 0));
+            if a < b {
+                e.0 += 1
+            } else {
+                e.1 += 1
+            }
+            if bad.is_none() && (e.0 + e.1 > 2 || e.0 > 1 || e.1 > 1) {
+                bad = Some([a.min(b), a.max(b)]);
+            }
+        }
+    }
+    let [a, b] = bad?;
+    let on = faces.iter().enumerate().filter(|(_, f)| f.contains(&a) && f.contains(&b)).map(|(i, _)| i).collect();
+    Some(([a, b], on))
+}

@@ -223,6 +223,33 @@ impl Surface {
     }
 }
 
+/// Checks that the tessellated patches join into an edge-manifold, consistently oriented mesh
+/// ([`crate::check::bad_edge`]); an edge in more than two faces means that two patches overlap
+/// (two curves come closer than the spacing between nodes, or a patch folds onto its
+/// neighbour). The error names the patches, the curves and the place.
+fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
+    let Some(([a, b], faces)) = crate::check::bad_edge(&mesh.faces) else { return Ok(()) };
+    let mut patches: Vec<u32> = faces.iter().map(|&f| mesh.face_patch[f]).collect();
+    patches.sort_unstable();
+    patches.dedup();
+    let curve_of = |v: u32| {
+        res.segment_vertices.iter().position(|sv| sv.contains(&v)).map(|s| g.labels[g.segments[s].curve].clone())
+    };
+    let mut curves: Vec<String> = [a, b].iter().filter_map(|&v| curve_of(v)).collect();
+    curves.dedup();
+    let list = |v: &[String]| if v.is_empty() { "interior vertices".to_string() } else { v.join(" and ") };
+    let patches: Vec<String> = patches.iter().map(|p| p.to_string()).collect();
+    Err(Error::Topology(format!(
+        "patches {} overlap near {} (an edge of {} in {} triangles): the curves come closer than the \
+         mesh spacing between crossings, or a patch folds onto its neighbour; give a smaller --spacing, \
+         a larger --snap, or fix the curves there",
+        patches.join(", "),
+        crate::geom::fmt_point(mesh.positions[a as usize]),
+        list(&curves),
+        faces.len()
+    )))
+}
+
 /// Surfaces `network` with `options`. See [`surface_with_progress`].
 pub fn surface(network: &Network, options: &Options) -> Result<Surface> {
     surface_with_progress(network, options, &mut |_, _, _| {})
@@ -398,6 +425,7 @@ pub fn surface_with_progress(
         let clock = Instant::now();
         let mesh = tessellate(&g, &res, &patches, d)?;
         timings.tessellate += clock.elapsed().as_secs_f64();
+        manifold(&mesh, &g, &res)?;
         Ok((res, mesh))
     };
 
@@ -443,6 +471,7 @@ pub fn surface_with_progress(
             let clock = Instant::now();
             let (mesh, kept) = tessellate_conformal(&g, &res, &patches, d, &coarse_res, &flat)?;
             timings.tessellate += clock.elapsed().as_secs_f64();
+            manifold(&mesh, &g, &res)?;
             for p in kept {
                 warnings.push(Warning(format!(
                     "patch {p}: its conformal flattening folds over; it keeps the planar projection"
