@@ -9,8 +9,10 @@
 //!    directions (so no directed edge appears twice);
 //! 5. no silent hole: an edge with one face joins two vertices on boundary curves;
 //! 6. with hard constraints, every input sample lies on the surface, within half the spacing
-//!    plus the snapping tolerance (the surface interpolates the curves' resampled splines,
-//!    which pass through the samples; snapping may move a sample by the tolerance).
+//!    plus twice the snapping tolerance plus a quarter of its longest input edge (the surface
+//!    interpolates the curves' resampled splines, which pass through the samples; a node moves
+//!    the nearest sample onto itself when it is within a quarter of an edge, and the hits
+//!    within twice the tolerance merge into one node: [`crate::topology::nodes`]).
 
 use crate::geom::DVec3;
 use crate::metrics::MeshDistance;
@@ -111,17 +113,34 @@ pub fn check_surface(surface: &Surface, network: &Network, snap: f64, constraint
     // 6. Samples on the surface.
     if constraints == Constraints::Hard && !mesh.faces.is_empty() && problems.is_empty() {
         let bvh = MeshDistance::new(p, &mesh.faces);
-        let tolerance = 0.5 * surface.stats.spacing + snap;
-        let mut worst: Option<(f64, usize, usize, DVec3)> = None;
+        let base = 0.5 * surface.stats.spacing + 2.0 * snap;
+        let mut worst: Option<(f64, usize, usize, DVec3, f64)> = None;
         for (ci, c) in network.curves.iter().enumerate() {
+            let m = c.points.len();
+            let edge = |a: usize, b: usize| c.points[a].distance(c.points[b]);
             for (si, q) in c.points.iter().enumerate() {
+                let before = if si > 0 {
+                    edge(si - 1, si)
+                } else if c.closed {
+                    edge(m - 1, 0)
+                } else {
+                    0.0
+                };
+                let after = if si + 1 < m {
+                    edge(si, si + 1)
+                } else if c.closed {
+                    edge(m - 1, 0)
+                } else {
+                    0.0
+                };
+                let tolerance = base + 0.25 * before.max(after);
                 let d = bvh.closest(*q).0;
-                if d > tolerance && worst.is_none_or(|w| d > w.0) {
-                    worst = Some((d, ci, si, *q));
+                if d > tolerance && worst.is_none_or(|w| d - tolerance > w.0 - w.4) {
+                    worst = Some((d, ci, si, *q, tolerance));
                 }
             }
         }
-        if let Some((d, ci, si, q)) = worst {
+        if let Some((d, ci, si, q, tolerance)) = worst {
             problems.push(format!(
                 "curve {ci}, sample {si} at {q:?} is {d:.3e} from the surface (tolerance {tolerance:.3e})"
             ));

@@ -198,3 +198,15 @@ fn fuzz_ply_element_without_properties_is_fast() {
     let _ = curvenet::io::parse_mesh(&data[1..], std::path::Path::new("m.ply"), "m.ply");
     assert!(clock.elapsed().as_secs_f64() < 1.0, "took {:?}", clock.elapsed());
 }
+
+/// Found by the `pipeline` fuzzer (artifact `pipeline2-crash-11b49df1…`): the saddle with 4–5
+/// samples per curve, scaled by 1e3, samples moved by up to 0.1 of the spacing. A rim sample
+/// lay 125 from the surface, over the checker's first tolerance (half the spacing plus the
+/// snap, 122): the node had moved it, as nodes do by up to a quarter of an input edge. The
+/// invariant now allows what the node contract allows (`curvenet::check`, invariant 6), and
+/// this input must pass.
+#[test]
+fn fuzz_sparse_noisy_saddle_samples_moved_by_nodes() {
+    let data = [52u8, 240, 126, 7, 40, 190, 255, 40, 50, 15, 129, 3, 0, 0, 0, 41];
+    assert!(replay(&data).expect("long enough").is_ok());
+}
