@@ -121,9 +121,16 @@ pub fn polygon_vector_area(poly: &[DVec3]) -> DVec3 {
     0.5 * a
 }
 
-/// Formats a point for messages: `(x, y, z)` with 6 significant digits.
+/// Formats a point for messages: `(x, y, z)` with 6 decimals, or in scientific notation with
+/// 7 significant digits when the point's largest coordinate is below 1e-3 or from 1e7 (tiny
+/// and huge networks keep readable positions).
 pub fn fmt_point(p: DVec3) -> String {
-    format!("({:.6}, {:.6}, {:.6})", p.x, p.y, p.z)
+    let m = p.abs().max_element();
+    if m == 0.0 || (1e-3..1e7).contains(&m) || !m.is_finite() {
+        format!("({:.6}, {:.6}, {:.6})", p.x, p.y, p.z)
+    } else {
+        format!("({:.6e}, {:.6e}, {:.6e})", p.x, p.y, p.z)
+    }
 }
 
 #[cfg(test)]

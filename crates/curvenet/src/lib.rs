@@ -23,6 +23,8 @@
 //! 8. [`methods`]: normal-control ([CG] eq. 1–3), biharmonic, triharmonic.
 //! 9. [`metrics`]: distances to analytic ground truth; [`examples`]: analytic networks.
 //! 10. [`render`]: PNG pictures (shading, curvature, isophotes, normal deviation, curves).
+//! 10. [`check`]: the invariants every output satisfies (finite, manifold, oriented, samples
+//!     on the surface), used by the tests and the fuzzers (`fuzz/`).
 //!
 //! [`cauchy`]: a second surfacing system, the order-k Laplacians with ghost-vertex Cauchy
 //! constraints of Andrews et al. 2011 ([A11]; `--method cauchy`, `inflate`, `fit`).
@@ -33,6 +35,7 @@
 //! (plane sections, `curvenet sample`).
 
 pub mod cauchy;
+pub mod check;
 pub mod clock;
 pub mod conformal;
 pub mod curves;

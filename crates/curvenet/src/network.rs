@@ -48,6 +48,17 @@ impl Network {
     pub const DEFAULT_SNAP_SPACING: f64 = 0.1;
     /// Samples closer than this (relative to the bounding-box diagonal) are duplicates.
     pub const DUPLICATE_RELATIVE: f64 = 1e-9;
+    /// Largest supported coordinate magnitude and bounding-box diagonal, and (its inverse) the
+    /// smallest supported diagonal. The pipeline is scale invariant, but it forms squared
+    /// lengths, areas and the fourth power of a patch size (the short paper's `ω₁ = W / s⁴`):
+    /// within `1e±60` none of them over- or underflows an `f64`.
+    pub const MAX_EXTENT: f64 = 1e60;
+    /// Largest supported ratio of the distance from the origin to the bounding-box diagonal:
+    /// beyond it an `f64` keeps fewer than about 7 significant digits of the shape.
+    pub const MAX_OFFSET_RATIO: f64 = 1e9;
+    /// A normal within this cosine of the curve's direction on both sides of its sample
+    /// (about 11°) is tangent to the curve: it defines no side of the surface.
+    pub const TANGENT_NORMAL_COSINE: f64 = 0.98;
 
     /// Bounding box of all samples.
     pub fn bounding_box(&self) -> Aabb {
@@ -121,7 +132,10 @@ impl Network {
     /// Errors ([`Error::Input`]), each naming the curve and sample: no curves; `points` and
     /// `normals` of different lengths; a non-finite coordinate; a zero or non-normalisable
     /// normal; fewer than 2 distinct samples (3 for a closed curve); all samples coincident;
-    /// a snapping tolerance that is not a positive number.
+    /// a snapping tolerance that is not a positive number; coordinates or an extent outside
+    /// [`Network::MAX_EXTENT`]; a network far from the origin compared with its size
+    /// ([`Network::MAX_OFFSET_RATIO`]); a normal tangent to its curve
+    /// ([`Network::TANGENT_NORMAL_COSINE`]).
     pub fn validated(&self) -> Result<(Network, Vec<Warning>)> {
         let mut warnings = Vec::new();
         if self.curves.is_empty() {
@@ -176,11 +190,26 @@ impl Network {
                 )));
             }
         }
-        let diag = self.bounding_box().diagonal();
-        if !(diag > 0.0) || !diag.is_finite() {
-            return Err(Error::Input(
-                "all samples of the network coincide (or its extent overflows): there is nothing to surface".into(),
-            ));
+        let bbox = self.bounding_box();
+        // (The diagonal underflows to 0 for extents below 1e-154: test the spread itself.)
+        let diag = bbox.diagonal().max((bbox.max - bbox.min).max_element());
+        if !(diag > 0.0) {
+            return Err(Error::Input("all samples of the network coincide: there is nothing to surface".into()));
+        }
+        let far = bbox.min.abs().max(bbox.max.abs()).max_element();
+        if !(far <= Self::MAX_EXTENT && diag <= Self::MAX_EXTENT && diag >= 1.0 / Self::MAX_EXTENT) {
+            return Err(Error::Input(format!(
+                "the network's coordinates (largest magnitude {far:.3e}, bounding-box diagonal {diag:.3e}) are \
+                 outside the supported range [{:.0e}, {:.0e}]; rescale the network (the result scales with it)",
+                1.0 / Self::MAX_EXTENT,
+                Self::MAX_EXTENT
+            )));
+        }
+        if far > Self::MAX_OFFSET_RATIO * diag {
+            return Err(Error::Input(format!(
+                "the network lies {far:.3e} from the origin but is only {diag:.3e} across: too few significant \
+                 digits are left of its shape; translate it towards the origin"
+            )));
         }
         let dup_tol = Self::DUPLICATE_RELATIVE * diag;
 
@@ -224,10 +253,43 @@ impl Network {
                     if c.closed { " closed" } else { "n open" }
                 )));
             }
+            if let Some(si) = tangent_normal(&points, &normals, c.closed) {
+                return Err(Error::Input(format!(
+                    "{label}, sample {si}: normal {} is tangent to the curve (within {:.0}° of its direction); \
+                     normals must be across the curve, pointing to the outside of the surface",
+                    fmt_point(normals[si]),
+                    Self::TANGENT_NORMAL_COSINE.acos().to_degrees()
+                )));
+            }
             curves.push(Curve { name: c.name.clone(), points, normals, closed: c.closed, boundary: c.boundary });
         }
         Ok((Network { curves, snap: self.snap }, warnings))
     }
+}
+
+/// The first sample whose unit normal lies within [`Network::TANGENT_NORMAL_COSINE`] of the
+/// curve's direction on both sides of it (on the one side at the ends of an open curve).
+fn tangent_normal(points: &[DVec3], normals: &[DVec3], closed: bool) -> Option<usize> {
+    let n = points.len();
+    let chord = |i: usize, j: usize| (points[j] - points[i]).normalize_or_zero();
+    (0..n).find(|&i| {
+        let before = if i > 0 {
+            Some(chord(i - 1, i))
+        } else if closed {
+            Some(chord(n - 1, 0))
+        } else {
+            None
+        };
+        let after = if i + 1 < n {
+            Some(chord(i, i + 1))
+        } else if closed {
+            Some(chord(n - 1, 0))
+        } else {
+            None
+        };
+        let along = |c: Option<DVec3>| c.is_none_or(|c| normals[i].dot(c).abs() > Network::TANGENT_NORMAL_COSINE);
+        (before.is_some() || after.is_some()) && along(before) && along(after)
+    })
 }
 
 /// A small deterministic generator (SplitMix64) with Gaussian samples (Box–Muller), so that

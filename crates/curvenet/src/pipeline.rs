@@ -237,6 +237,33 @@ impl Surface {
     }
 }
 
+/// Checks that the tessellated patches join into an edge-manifold, consistently oriented mesh
+/// ([`crate::check::bad_edge`]); an edge in more than two faces means that two patches overlap
+/// (two curves come closer than the spacing between nodes, or a patch folds onto its
+/// neighbour). The error names the patches, the curves and the place.
+fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
+    let Some(([a, b], faces)) = crate::check::bad_edge(&mesh.faces) else { return Ok(()) };
+    let mut patches: Vec<u32> = faces.iter().map(|&f| mesh.face_patch[f]).collect();
+    patches.sort_unstable();
+    patches.dedup();
+    let curve_of = |v: u32| {
+        res.segment_vertices.iter().position(|sv| sv.contains(&v)).map(|s| g.labels[g.segments[s].curve].clone())
+    };
+    let mut curves: Vec<String> = [a, b].iter().filter_map(|&v| curve_of(v)).collect();
+    curves.dedup();
+    let list = |v: &[String]| if v.is_empty() { "interior vertices".to_string() } else { v.join(" and ") };
+    let patches: Vec<String> = patches.iter().map(|p| p.to_string()).collect();
+    Err(Error::Topology(format!(
+        "patches {} overlap near {} (an edge of {} in {} triangles): the curves come closer than the \
+         mesh spacing between crossings, or a patch folds onto its neighbour; give a smaller --spacing, \
+         a larger --snap, or fix the curves there",
+        patches.join(", "),
+        crate::geom::fmt_point(mesh.positions[a as usize]),
+        list(&curves),
+        faces.len()
+    )))
+}
+
 /// Surfaces `network` with `options`. See [`surface_with_progress`].
 pub fn surface(network: &Network, options: &Options) -> Result<Surface> {
     surface_with_progress(network, options, &mut |_, _, _| {})
@@ -416,6 +443,7 @@ pub(crate) fn prepare(
         let clock = Instant::now();
         let mesh = tessellate(&g, &res, &patches, d)?;
         timings.tessellate += clock.elapsed().as_secs_f64();
+        manifold(&mesh, &g, &res)?;
         Ok((res, mesh))
     };
 
@@ -462,6 +490,7 @@ pub(crate) fn prepare(
             let clock = Instant::now();
             let (mesh, kept) = tessellate_conformal(&g, &res, &patches, d, &coarse_res, &flat)?;
             timings.tessellate += clock.elapsed().as_secs_f64();
+            manifold(&mesh, &g, &res)?;
             warnings.extend(fold_warnings(&mesh).into_iter().filter(|w| !warnings.contains(w)).collect::<Vec<_>>());
             for p in kept {
                 warnings.push(Warning(format!(
@@ -534,7 +563,9 @@ pub(crate) fn solve_prepared(
         let ops = cotan_operators(mesh, metric, metric_positions);
         st.operators += clock.elapsed().as_secs_f64();
         if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
-            return Err(Error::Numerical(format!("vertex {i} has zero area: degenerate triangles around it")));
+            let patch = mesh.faces.iter().position(|f| f.contains(&(i as u32))).map(|f| mesh.face_patch[f]);
+            let at = patch.map_or_else(String::new, |p| format!(" of patch {p}"));
+            return Err(Error::Numerical(format!("vertex {i}{at} has zero area: degenerate triangles around it")));
         }
         match options.method {
             Method::NormalControl => {

@@ -91,9 +91,14 @@ impl Cholesky {
     /// [`Cholesky::factor`].
     pub fn factor_in_parts(q: &Csc, what: &str, parts: Option<&[u32]>) -> Result<Self> {
         match parts {
-            Some(p) if p.len() == q.ncols && q.ncols >= Ordering::PARTS_FROM => {
-                let order = crate::ordering::nested_dissection_in_parts(q, p);
-                Self::factor_with(q, what, Some(&order))
+            Some(p) if p.len() == q.ncols => {
+                let order =
+                    (q.ncols >= Ordering::PARTS_FROM).then(|| crate::ordering::nested_dissection_in_parts(q, p));
+                let order = order.or_else(|| {
+                    (q.ncols >= Ordering::NESTED_DISSECTION_FROM).then(|| crate::ordering::nested_dissection(q))
+                });
+                // A failed pivot names the patch of its unknown.
+                Self::factor_named(q, what, order.as_deref(), &|j| format!("free vertex {j} of patch {}", p[j]))
             }
             _ => Self::factor(q, what),
         }
@@ -118,6 +123,11 @@ impl Cholesky {
 
     /// The factorisation with `order` (a valid permutation) or AMD.
     fn factor_with(q: &Csc, what: &str, order: Option<&[u32]>) -> Result<Self> {
+        Self::factor_named(q, what, order, &|j| format!("unknown {j}"))
+    }
+
+    /// [`Cholesky::factor_with`]; `describe(j)` names unknown `j` when its pivot fails.
+    fn factor_named(q: &Csc, what: &str, order: Option<&[u32]>, describe: &dyn Fn(usize) -> String) -> Result<Self> {
         let inv: Vec<u32>;
         let ord = match order {
             Some(fwd) => {
@@ -139,7 +149,7 @@ impl Cholesky {
             _ => None,
         };
         let symbolic = Arc::new(Symbolic { chol: symbolic, split });
-        let values = with_faer(q, what, |a| numeric(&symbolic.chol, a, what))??;
+        let values = with_faer(q, what, |a| numeric(&symbolic.chol, a, what, describe))??;
         Ok(Cholesky { symbolic, pattern: fingerprint(q), values })
     }
 
@@ -149,7 +159,7 @@ impl Cholesky {
         if fingerprint(q) != self.pattern {
             return Cholesky::factor(q, what);
         }
-        let values = with_faer(q, what, |a| numeric(&self.symbolic.chol, a, what))??;
+        let values = with_faer(q, what, |a| numeric(&self.symbolic.chol, a, what, &|j| format!("unknown {j}")))??;
         Ok(Cholesky { symbolic: Arc::clone(&self.symbolic), pattern: self.pattern, values })
     }
 
@@ -228,10 +238,12 @@ fn with_faer<R>(q: &Csc, what: &str, f: impl FnOnce(faer::sparse::SparseColMatRe
 }
 
 /// The numeric `LLᵀ` factorisation of `a` on the symbolic structure `symbolic`.
+/// A failed pivot is reported with `describe(j)` of its unknown `j` (in the caller's numbering).
 fn numeric(
     symbolic: &SymbolicCholesky<u32>,
     a: faer::sparse::SparseColMatRef<'_, u32, f64>,
     what: &str,
+    describe: &dyn Fn(usize) -> String,
 ) -> Result<Vec<f64>> {
     let mut values = vec![0.0; symbolic.len_val()];
     // Two threads pay off for large factors only (measured: slower at 100k unknowns, 18% faster
@@ -253,8 +265,20 @@ fn numeric(
             Default::default(),
         )
         .map_err(|e| {
+            let at = match e {
+                faer::linalg::solvers::LltError::NonPositivePivot { index } => {
+                    // faer's `index` is 1-based, in the elimination order; map it back to the
+                    // caller's unknown (guarded: a pivot we cannot place is reported unplaced).
+                    let k = index.saturating_sub(1);
+                    match symbolic.perm() {
+                        Some(p) => p.arrays().0.get(k).map(|&j| j as usize),
+                        None => (k < a.ncols()).then_some(k),
+                    }
+                    .map_or_else(String::new, |j| format!(" at {}", describe(j)))
+                }
+            };
             Error::Numerical(format!(
-                "{what}: the system is not positive definite ({e:?}); a patch may have no constrained vertex, \
+                "{what}: the system is singular or indefinite{at}; the patch may have no constrained vertex, \
                  or degenerate triangles"
             ))
         })?;

@@ -97,6 +97,17 @@ pub fn stage_mesh(path: &Path, mesh: MeshData<'_>) -> Result<Staged> {
     if let Some(bad) = mesh.faces.iter().flatten().find(|&&i| i as usize >= n) {
         return Err(Error::Usage(format!("mesh face refers to vertex {bad} but there are {n} vertices")));
     }
+    // No NaN or infinity is ever written: a non-finite value is a numerical failure upstream.
+    let vectors =
+        [("position", Some(mesh.positions)), ("normal", mesh.normals), ("propagated normal", mesh.propagated_normals)];
+    for (name, values) in vectors {
+        if let Some(i) = values.and_then(|v| v.iter().position(|p| !p.is_finite())) {
+            return Err(Error::Numerical(format!("vertex {i}: its {name} is not finite; nothing was written")));
+        }
+    }
+    if let Some(i) = mesh.mean_curvature.and_then(|h| h.iter().position(|h| !h.is_finite())) {
+        return Err(Error::Numerical(format!("vertex {i}: its mean curvature is not finite; nothing was written")));
+    }
     Staged::write(path, |w| match format {
         MeshFormat::Obj => write_obj(w, mesh),
         MeshFormat::Ply => write_ply(w, mesh),
@@ -236,14 +247,21 @@ fn write_ply(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
 
 /// Reads a triangle mesh (`.obj`, `.off`, `.ply`); polygons are fan-triangulated.
 pub fn read_mesh(path: &Path) -> Result<MeshFile> {
-    let format = mesh_format(path)?;
+    mesh_format(path)?;
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    let source = path.display().to_string();
+    parse_mesh(&bytes, path, &path.display().to_string())
+}
+
+/// Parses a triangle mesh from the bytes of a file named `name` (its extension gives the
+/// format); `source` names it in messages. What [`read_mesh`] does after reading the file.
+pub fn parse_mesh(bytes: &[u8], name: &Path, source: &str) -> Result<MeshFile> {
+    let format = mesh_format(name)?;
+    let source = source.to_string();
     let mesh = match format {
-        MeshFormat::Ply => read_ply(&bytes, &source)?,
+        MeshFormat::Ply => read_ply(bytes, &source)?,
         _ => {
             let text =
-                std::str::from_utf8(&bytes).map_err(|_| parse_error(&source, 1, 1, "file is not valid UTF-8 text"))?;
+                std::str::from_utf8(bytes).map_err(|_| parse_error(&source, 1, 1, "file is not valid UTF-8 text"))?;
             if format == MeshFormat::Obj {
                 read_obj(text, &source)?
             } else {
@@ -560,7 +578,10 @@ fn read_ply(bytes: &[u8], source: &str) -> Result<MeshFile> {
         let mut curv = Vec::new();
         let mut flags = Vec::new();
         let mut vals = vec![0.0; el.props.len()];
-        for _ in 0..el.count {
+        // An element without properties takes no bytes: skip it at once, whatever its count
+        // (a fuzzed header declared 1.4e11 of them and the loop took minutes).
+        let records = if el.props.is_empty() { 0 } else { el.count };
+        for _ in 0..records {
             for (k, p) in el.props.iter().enumerate() {
                 if let Some(cty) = p.list {
                     let len = r.read(cty)?;

@@ -66,3 +66,27 @@ fn noise_is_seeded_and_keeps_crossings() {
     // The crossing samples of the equator and a meridian moved together.
     assert!(a.curves[0].points[32].distance(a.curves[1].points[0]) < 1e-12);
 }
+
+#[test]
+fn normals_tangent_to_the_curve_are_rejected() {
+    let mut c = line(4);
+    c.normals[2] = DVec3::new(1.0, 0.02, 0.0);
+    let e = Network { curves: vec![c.clone()], snap: None }.validated().unwrap_err();
+    assert!(e.to_string().contains("curve 0, sample 2: normal") && e.to_string().contains("tangent"), "{e}");
+    // 45° off the curve is a valid (if unusual) normal.
+    c.normals[2] = DVec3::new(1.0, 0.0, 1.0);
+    assert!(Network { curves: vec![c], snap: None }.validated().is_ok());
+}
+
+#[test]
+fn extents_outside_the_supported_range_are_rejected() {
+    for (scale, shift) in [(1e70, 0.0), (1e-70, 0.0), (1.0, 1e10)] {
+        let mut c = line(3);
+        c.points.iter_mut().for_each(|p| *p = (*p + DVec3::splat(shift)) * scale);
+        let e = Network { curves: vec![c], snap: None }.validated().unwrap_err().to_string();
+        assert!(e.contains("supported range") || e.contains("translate it"), "{scale:e} {shift:e}: {e}");
+    }
+    let mut c = line(3);
+    c.points.iter_mut().for_each(|p| *p = (*p + DVec3::splat(1e6)) * 1e-12);
+    assert!(Network { curves: vec![c], snap: None }.validated().is_ok());
+}

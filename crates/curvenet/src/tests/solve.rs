@@ -114,3 +114,30 @@ fn tree_solves_match_the_sequential_solve() {
         }
     }
 }
+
+/// A singular system factored along patches names the patch of the failing unknown.
+#[test]
+fn a_singular_system_names_the_patch() {
+    // Two decoupled blocks: unknowns 0..3 (patch 0, positive definite) and 3..6 (patch 1, the
+    // singular path Laplacian with no constrained vertex).
+    let n = 6;
+    let mut q = Csc { nrows: n, ncols: n, col_ptr: vec![0], ..Default::default() };
+    for j in 0..n {
+        let (lo, hi) = if j < 3 { (0, 3) } else { (3, 6) };
+        for i in j.saturating_sub(1).max(lo)..(j + 2).min(hi) {
+            q.row_idx.push(i as u32);
+            let diag = if j < 3 {
+                2.0
+            } else if j == 3 || j == 5 {
+                1.0
+            } else {
+                2.0
+            };
+            q.values.push(if i == j { diag } else { -1.0 });
+        }
+        q.col_ptr.push(q.row_idx.len());
+    }
+    let Err(e) = Cholesky::factor_in_parts(&q, "test system", Some(&[0, 0, 0, 1, 1, 1])) else { panic!("factored") };
+    let e = e.to_string();
+    assert!(e.contains("test system") && e.contains("of patch 1"), "{e}");
+}

@@ -44,3 +44,29 @@ fn ascii_ply_with_quads() {
     let m = read_ply(text, "t").unwrap();
     assert_eq!(m.faces, vec![[0, 1, 2], [0, 2, 3]]);
 }
+
+/// No NaN or infinity is ever written: a non-finite position, normal or curvature is a
+/// numerical error naming the vertex, and neither the target nor a temporary file appears.
+#[test]
+fn non_finite_values_are_never_written() {
+    let dir = std::env::temp_dir().join(format!("curvenet-mesh-nan-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let breakers: [(&str, fn(&mut MeshFile)); 4] = [
+        ("position", |m| m.positions[2].y = f64::NAN),
+        ("normal", |m| m.normals.as_mut().unwrap()[1].x = f64::INFINITY),
+        ("mean curvature", |m| m.mean_curvature.as_mut().unwrap()[3] = f64::NAN),
+        ("propagated normal", |m| m.propagated_normals.as_mut().unwrap()[0].z = f64::NEG_INFINITY),
+    ];
+    for (what, breaker) in breakers {
+        let mut m = tetra();
+        breaker(&mut m);
+        for ext in ["ply", "obj", "off"] {
+            let p = dir.join(format!("t.{ext}"));
+            let e = write_mesh(&p, m.as_data()).unwrap_err();
+            assert!(matches!(e, Error::Numerical(_)) && e.to_string().contains(what), "{ext}: {e}");
+            assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "{ext}: a file was written");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
