@@ -238,3 +238,25 @@ fn product_impl(a: &Csc, d: &[f64], b: &Csc, first: usize, lower: bool) -> Csc {
 #[cfg(test)]
 #[path = "tests/sparse.rs"]
 mod tests;
+
+/// The 5-point Laplacian of a `k × k` grid with `diagonal` on the diagonal (`> 4`: SPD), for
+/// the solver and ordering tests.
+#[cfg(test)]
+pub(crate) fn grid_laplacian(k: usize, diagonal: f64) -> Csc {
+    let mut t = Vec::new();
+    for j in 0..k {
+        for i in 0..k {
+            let v = (j * k + i) as u32;
+            t.push((v, v, diagonal));
+            if i + 1 < k {
+                t.push((v, v + 1, -1.0));
+                t.push((v + 1, v, -1.0));
+            }
+            if j + 1 < k {
+                t.push((v, v + k as u32, -1.0));
+                t.push((v + k as u32, v, -1.0));
+            }
+        }
+    }
+    Csc::from_triplets(k * k, k * k, t)
+}

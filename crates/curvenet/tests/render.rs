@@ -3,7 +3,7 @@
 //! decodes back to the image.
 
 use curvenet::examples;
-use curvenet::render::{colormap, png, render, Coloring, RenderOptions, Scene, View};
+use curvenet::render::{png, render, Coloring, RenderOptions, Scene, View};
 use curvenet::Options;
 
 fn scene(net: &curvenet::Network) -> Scene {
@@ -103,7 +103,10 @@ fn bad_requests_are_errors() {
     // Wide but short panels still render (the view area shrinks, nothing underflows).
     let short = RenderOptions { width: 900, height: 64, colorings: vec![Coloring::Curvature], ..Default::default() };
     assert_eq!(render(&s, &short).unwrap().height, 64);
+    let mut short_normals = s.clone();
+    short_normals.normals.pop();
+    let e = render(&short_normals, &RenderOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("normals for"), "{e}");
     let tiny = RenderOptions { width: 10, height: 10, ..Default::default() };
     assert!(render(&s, &tiny).unwrap_err().to_string().contains("10x10"));
-    assert_eq!(colormap::diverging(0.0), colormap::diverging(-0.0));
 }

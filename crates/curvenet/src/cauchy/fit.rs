@@ -332,18 +332,12 @@ fn greedy_reduction(
             feature.copy_from_slice(&current);
             return Ok((comps.len(), active.iter().filter(|&&a| a).count()));
         }
-        // The inactive curve nearest to the worst vertex.
+        // The inactive curve nearest to the worst vertex (`inactive` is not empty here).
         let p = positions[worst];
-        let next = inactive
-            .into_iter()
-            .min_by(|&a, &b| {
-                let d = |c: usize| {
-                    comps[c].iter().map(|&v| positions[v as usize].distance(p)).fold(f64::INFINITY, f64::min)
-                };
-                d(a).total_cmp(&d(b))
-            })
-            .expect("non-empty");
-        active[next] = true;
+        let dist = |c: usize| comps[c].iter().map(|&v| positions[v as usize].distance(p)).fold(f64::INFINITY, f64::min);
+        if let Some(next) = inactive.into_iter().min_by(|&a, &b| dist(a).total_cmp(&dist(b))) {
+            active[next] = true;
+        }
     }
 }
 

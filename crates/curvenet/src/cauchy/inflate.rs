@@ -93,11 +93,14 @@ fn resample(points: &[DVec2], closed: bool, d: f64) -> Vec<DVec2> {
     if closed {
         pts.push(points[0]);
     }
-    let mut acc = vec![0.0];
+    // Cumulative arc length at each point.
+    let mut acc = Vec::with_capacity(pts.len());
+    let mut total = 0.0;
+    acc.push(0.0);
     for w in pts.windows(2) {
-        acc.push(acc.last().unwrap() + w[0].distance(w[1]));
+        total += w[0].distance(w[1]);
+        acc.push(total);
     }
-    let total = *acc.last().unwrap();
     let n = ((total / d).round() as usize).max(if closed { 3 } else { 1 });
     let count = if closed { n } else { n + 1 };
     (0..count)

@@ -162,9 +162,7 @@ impl Scene {
         if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
             return Err(Error::Input(format!("vertex {i} of the mesh is not finite")));
         }
-        if let Some((k, f)) = mesh.faces.iter().enumerate().find(|(_, f)| f.iter().any(|&v| v as usize >= n)) {
-            return Err(Error::Input(format!("face {k} {f:?} refers to a vertex beyond the {n} of the mesh")));
-        }
+        check_faces(mesh.faces, n)?;
         let boundary = boundary_vertices(n, mesh.faces);
         let (normals, mean_curvature) = match (mesh.normals, mesh.mean_curvature) {
             (Some(nr), Some(h)) if nr.len() == n && h.len() == n => (nr.to_vec(), h.to_vec()),
@@ -208,6 +206,25 @@ impl Scene {
         self
     }
 
+    /// Checks that the attributes have one entry per vertex and the faces valid indices
+    /// (the fields are public: a scene built by hand is checked before it is drawn).
+    pub fn check(&self) -> Result<()> {
+        let n = self.positions.len();
+        if self.faces.is_empty() {
+            return Err(Error::Input("the mesh has no triangles to render".into()));
+        }
+        check_faces(&self.faces, n)?;
+        let lengths = [
+            ("normals", self.normals.len()),
+            ("mean curvatures", self.mean_curvature.len()),
+            ("propagated normals", self.propagated_normals.as_ref().map_or(n, Vec::len)),
+        ];
+        if let Some((what, len)) = lengths.iter().find(|(_, len)| *len != n) {
+            return Err(Error::Input(format!("the scene has {len} {what} for {n} vertices")));
+        }
+        Ok(())
+    }
+
     fn bounds(&self) -> (DVec3, f64) {
         let b = Aabb::of(self.positions.iter().copied());
         let c = b.center();
@@ -233,6 +250,14 @@ impl Scene {
     /// (a few noisy vertices do not wash out the map; a sphere's map is one colour).
     pub fn curvature_range(&self) -> f64 {
         percentile(self.mean_curvature.iter().map(|h| h.abs()).collect(), 0.95).max(1e-12)
+    }
+}
+
+/// An error naming the first face that refers to a vertex beyond the `n` of the mesh.
+fn check_faces(faces: &[[u32; 3]], n: usize) -> Result<()> {
+    match faces.iter().enumerate().find(|(_, f)| f.iter().any(|&v| v as usize >= n)) {
+        Some((k, f)) => Err(Error::Input(format!("face {k} {f:?} refers to a vertex beyond the {n} of the mesh"))),
+        None => Ok(()),
     }
 }
 
@@ -368,9 +393,7 @@ pub fn render_panels(panels: &[Panel<'_>], columns: usize, width: u32, height: u
                 "normal deviation needs the propagated normals N*: render a network surfaced by normal-control, or a PLY written by curvenet (pnx/pny/pnz)".into(),
             ));
         }
-        if p.scene.faces.is_empty() {
-            return Err(Error::Input("the mesh has no triangles to render".into()));
-        }
+        p.scene.check()?;
     }
     let images: Vec<Image> = panels.par_iter().map(|p| render_panel(p, pw, ph)).collect();
     let mut out = Image::filled(width, height, [255, 255, 255]);
@@ -421,14 +444,14 @@ fn render_panel(p: &Panel<'_>, pw: u32, ph: u32) -> Image {
 
     // Per-vertex scalar of the colouring, and its range.
     let deviation;
-    let (values, range): (Option<&[f64]>, f64) = match p.coloring {
-        Coloring::Curvature => (Some(&scene.mean_curvature), p.range.unwrap_or_else(|| scene.curvature_range())),
+    let (values, range): (&[f64], f64) = match p.coloring {
+        Coloring::Curvature => (&scene.mean_curvature, p.range.unwrap_or_else(|| scene.curvature_range())),
         Coloring::NormalDeviation => {
             deviation = scene.normal_deviation_degrees().unwrap_or_default();
             let r = p.range.unwrap_or_else(|| percentile(deviation.clone(), 0.99).max(0.1));
-            (Some(&deviation), r)
+            (&deviation, r)
         }
-        _ => (None, 1.0),
+        _ => (&[], 1.0),
     };
     let background = [1.0f32, 1.0, 1.0];
     let mut frame = Frame { width: w, height: h, rgb: vec![background; w * h] };
@@ -466,8 +489,7 @@ fn render_panel(p: &Panel<'_>, pw: u32, ph: u32) -> Image {
                     base.map(|b| b * (0.22 + 0.85 * diffuse) + 0.35 * spec)
                 }
                 Coloring::Curvature | Coloring::NormalDeviation => {
-                    let v = values.unwrap();
-                    let s = v[i0] * b0 + v[i1] * b1 + v[i2] * b2;
+                    let s = values[i0] * b0 + values[i1] * b1 + values[i2] * b2;
                     let base = if p.coloring == Coloring::Curvature {
                         colormap::diverging(s / range)
                     } else {

@@ -1,10 +1,18 @@
 //! A minimal PNG encoder (8-bit RGB, one IDAT chunk, zlib through `miniz_oxide`), per the PNG
 //! specification (ISO/IEC 15948): signature, IHDR, IDAT, IEND, each chunk with its CRC-32.
 
-/// Encodes `rgb` (`width × height × 3` bytes, rows top to bottom) as a PNG file.
+/// Encodes `rgb` (`width × height × 3` bytes, rows top to bottom) as a PNG file. A short
+/// buffer is padded with black, a long one cut (the callers pass exact sizes).
 pub fn encode_rgb(width: u32, height: u32, rgb: &[u8]) -> Vec<u8> {
-    assert_eq!(rgb.len(), width as usize * height as usize * 3, "image buffer size");
     let stride = width as usize * 3;
+    let size = stride * height as usize;
+    let padded;
+    let rgb = if rgb.len() == size {
+        rgb
+    } else {
+        padded = rgb.iter().copied().chain(std::iter::repeat(0)).take(size).collect::<Vec<u8>>();
+        &padded
+    };
     // Each scanline is prefixed with its filter type; "Sub" (1) stores each byte minus the
     // byte of the pixel to its left, which compresses smooth renders well.
     let mut raw = Vec::with_capacity((stride + 1) * height as usize);

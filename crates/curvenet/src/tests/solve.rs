@@ -64,23 +64,7 @@ fn refactor_reuses_the_pattern() {
 
 /// The 5-point Laplacian of a k × k grid plus a small shift (SPD).
 fn grid(k: usize) -> Csc {
-    let n = k * k;
-    let mut t = Vec::new();
-    for j in 0..k {
-        for i in 0..k {
-            let v = (j * k + i) as u32;
-            t.push((v, v, 4.01));
-            if i + 1 < k {
-                t.push((v, v + 1, -1.0));
-                t.push((v + 1, v, -1.0));
-            }
-            if j + 1 < k {
-                t.push((v, v + k as u32, -1.0));
-                t.push((v + k as u32, v, -1.0));
-            }
-        }
-    }
-    Csc::from_triplets(n, n, t)
+    crate::sparse::grid_laplacian(k, 4.01)
 }
 
 #[test]
