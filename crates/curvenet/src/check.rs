@@ -18,7 +18,6 @@ use crate::geom::DVec3;
 use crate::metrics::MeshDistance;
 use crate::network::Network;
 use crate::pipeline::Surface;
-use std::collections::HashMap;
 
 /// What [`check_surface`] verifies about the samples.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,20 +75,8 @@ pub fn check_surface(surface: &Surface, network: &Network, snap: f64, constraint
     }
 
     // 3–5. Edges: the faces on each undirected edge, and each directed edge's uses.
-    let mut edges: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(3 * mesh.faces.len());
-    for f in &mesh.faces {
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            let e = edges.entry((a.min(b), a.max(b))).or_insert((0, 0));
-            if a < b {
-                e.0 += 1
-            } else {
-                e.1 += 1
-            }
-        }
-    }
     let (mut non_manifold, mut flipped, mut holes) = (Vec::new(), Vec::new(), Vec::new());
-    for (&(a, b), &(fwd, back)) in &edges {
+    for_each_edge(&mesh.faces, |a, b, fwd, back| {
         if fwd + back > 2 {
             non_manifold.push((a, b));
         } else if fwd > 1 || back > 1 {
@@ -97,7 +84,7 @@ pub fn check_surface(surface: &Surface, network: &Network, snap: f64, constraint
         } else if fwd + back == 1 && !(mesh.on_boundary[a as usize] && mesh.on_boundary[b as usize]) {
             holes.push((a, b));
         }
-    }
+    });
     for (list, what) in [
         (non_manifold, "shared by more than two faces (non-manifold)"),
         (flipped, "traversed twice in the same direction (inconsistent orientation)"),
@@ -236,28 +223,68 @@ pub fn fuzz_case(data: &[u8]) -> Option<(Network, crate::Options)> {
     Some((net, options))
 }
 
-/// The first edge of `faces` that breaks edge-manifoldness or orientation (used by more than
-/// two faces, or twice in the same direction), with the faces on it; `None` when there is none.
-/// The pipeline runs this on every tessellation (invariants 3–4) so that overlapping patches
-/// are an error, never a written non-manifold mesh.
-pub fn bad_edge(faces: &[[u32; 3]]) -> Option<([u32; 2], Vec<usize>)> {
-    let mut edges: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(3 * faces.len());
-    let mut bad = None;
+/// Visits every undirected edge `a < b` of `faces` once, in increasing `(a, b)` order, with
+/// how many faces traverse it from `a` to `b` (`fwd`) and from `b` to `a` (`back`). The uses
+/// are bucketed by their smaller vertex (a counting sort), so this is linear in the faces
+/// without hashing: the pipeline runs it on every tessellation.
+pub fn for_each_edge(faces: &[[u32; 3]], mut visit: impl FnMut(u32, u32, u32, u32)) {
+    let n = faces.iter().flatten().max().map_or(0, |m| *m as usize + 1);
+    let mut start = vec![0usize; n + 1];
+    for f in faces {
+        for k in 0..3 {
+            start[f[k].min(f[(k + 1) % 3]) as usize + 1] += 1;
+        }
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    // Each use: the larger vertex, shifted, with the direction in the lowest bit (1: b → a).
+    let mut uses = vec![0u64; start[n]];
+    let mut next = start.clone();
     for f in faces {
         for k in 0..3 {
             let (a, b) = (f[k], f[(k + 1) % 3]);
-            let e = edges.entry((a.min(b), a.max(b))).or_insert((0, 0));
-            if a < b {
-                e.0 += 1
-            } else {
-                e.1 += 1
-            }
-            if bad.is_none() && (e.0 + e.1 > 2 || e.0 > 1 || e.1 > 1) {
-                bad = Some([a.min(b), a.max(b)]);
-            }
+            let lo = a.min(b) as usize;
+            uses[next[lo]] = (u64::from(a.max(b)) << 1) | u64::from(a > b);
+            next[lo] += 1;
         }
     }
+    for lo in 0..n {
+        let bucket = &mut uses[start[lo]..start[lo + 1]];
+        bucket.sort_unstable();
+        let mut i = 0;
+        while i < bucket.len() {
+            let hi = bucket[i] >> 1;
+            let (mut fwd, mut back) = (0, 0);
+            while i < bucket.len() && bucket[i] >> 1 == hi {
+                if bucket[i] & 1 == 0 {
+                    fwd += 1
+                } else {
+                    back += 1
+                }
+                i += 1;
+            }
+            visit(lo as u32, hi as u32, fwd, back);
+        }
+    }
+}
+
+/// The first edge (in vertex order) of `faces` that breaks edge-manifoldness or orientation
+/// (used by more than two faces, or twice in the same direction), with the faces on it;
+/// `None` when there is none. The pipeline runs this on every tessellation (invariants 3–4)
+/// so that overlapping patches are an error, never a written non-manifold mesh.
+pub fn bad_edge(faces: &[[u32; 3]]) -> Option<([u32; 2], Vec<usize>)> {
+    let mut bad = None;
+    for_each_edge(faces, |a, b, fwd, back| {
+        if bad.is_none() && (fwd + back > 2 || fwd > 1 || back > 1) {
+            bad = Some([a, b]);
+        }
+    });
     let [a, b] = bad?;
     let on = faces.iter().enumerate().filter(|(_, f)| f.contains(&a) && f.contains(&b)).map(|(i, _)| i).collect();
     Some(([a, b], on))
 }
+
+#[cfg(test)]
+#[path = "tests/check.rs"]
+mod tests;

@@ -442,8 +442,8 @@ pub(crate) fn prepare(
         timings.resample += clock.elapsed().as_secs_f64();
         let clock = Instant::now();
         let mesh = tessellate(&g, &res, &patches, d)?;
-        timings.tessellate += clock.elapsed().as_secs_f64();
         manifold(&mesh, &g, &res)?;
+        timings.tessellate += clock.elapsed().as_secs_f64();
         Ok((res, mesh))
     };
 
@@ -489,8 +489,8 @@ pub(crate) fn prepare(
             progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
             let clock = Instant::now();
             let (mesh, kept) = tessellate_conformal(&g, &res, &patches, d, &coarse_res, &flat)?;
-            timings.tessellate += clock.elapsed().as_secs_f64();
             manifold(&mesh, &g, &res)?;
+            timings.tessellate += clock.elapsed().as_secs_f64();
             warnings.extend(fold_warnings(&mesh).into_iter().filter(|w| !warnings.contains(w)).collect::<Vec<_>>());
             for p in kept {
                 warnings.push(Warning(format!(
