@@ -10,7 +10,7 @@ use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw,
     SymmetricOrdering,
 };
-use faer::{Conj, Mat, MatMut, Par, Side};
+use faer::{Conj, MatMut, Par, Side};
 use std::sync::Arc;
 
 /// The fill-reducing ordering of a factorisation.
@@ -178,17 +178,19 @@ impl Cholesky {
         if let (SymbolicCholeskyRaw::Supernodal(sym), Some(split)) = (self.symbolic.chol.raw(), &self.symbolic.split) {
             // Two threads on two subtrees (see `tree_solve`), on the permuted right-hand sides.
             let (n, k) = (rhs.nrows(), rhs.ncols());
-            let mut x = Mat::<f64>::zeros(n, k);
+            // Row-major: the rows a supernode scatters to are one cache line each.
+            let mut x = vec![0.0; n * k];
             let fwd = self.symbolic.chol.perm().map(|p| p.arrays().0);
-            for c in 0..k {
-                for i in 0..n {
-                    x[(i, c)] = rhs[(fwd.map_or(i, |f| f[i] as usize), c)];
+            let source = |i: usize| fwd.map_or(i, |f| f[i] as usize);
+            for (i, row) in x.chunks_exact_mut(k).enumerate() {
+                for (c, v) in row.iter_mut().enumerate() {
+                    *v = rhs[(source(i), c)];
                 }
             }
-            tree_solve::solve(sym, &self.values, split, x.as_mut());
-            for c in 0..k {
-                for i in 0..n {
-                    rhs[(fwd.map_or(i, |f| f[i] as usize), c)] = x[(i, c)];
+            tree_solve::solve(sym, &self.values, split, &mut x, k);
+            for (i, row) in x.chunks_exact(k).enumerate() {
+                for (c, &v) in row.iter().enumerate() {
+                    rhs[(source(i), c)] = v;
                 }
             }
             return;
@@ -202,6 +204,12 @@ impl Cholesky {
             return;
         }
         self.solve_seq(rhs);
+    }
+
+    /// [`Cholesky::solve_in_place`] by faer's own supernodal solve on one thread: the
+    /// reference the two-thread tree solve is tested and benchmarked against.
+    pub fn solve_in_place_reference(&self, rhs: MatMut<'_, f64>) {
+        self.solve_seq(rhs)
     }
 
     fn solve_seq(&self, rhs: MatMut<'_, f64>) {
@@ -292,6 +300,241 @@ fn numeric(
 #[path = "tests/solve.rs"]
 mod tests;
 
+/// Dense kernels of the supernodal triangular solves with a few right-hand sides (`k ≤ ~9`
+/// columns). A supernode's block of `L` is column-major, `h = w + m` rows (its `w` columns,
+/// then its `m` pattern rows) by `w` columns; the right-hand sides `z` are column-major `h × k`
+/// too: the supernode's own rows, then its pattern's.
+///
+/// Both passes sweep the block four columns at a time, each column from the diagonal down in
+/// memory order (four sequential streams, the next four columns prefetched): the forward
+/// pass solves the 4 × 4 triangle and subtracts the four columns times the solved values
+/// from every row below (own rows and pattern rows in one sweep); the backward pass takes
+/// the four dot products with the rows below, then solves the triangle. Each value of `L` is
+/// read once per pass. The loops use AVX2 when the processor has it (checked at run time);
+/// no fused multiply–add, and the same order of operations on both paths: the same bits.
+mod kernels {
+    /// Forward substitution: `z[..w] ← T⁻¹ z[..w]`, `z[w..] −= B z[..w]` for the block
+    /// `[T; B]`.
+    pub(super) fn forward(block: &[f64], w: usize, h: usize, k: usize, z: &mut [f64]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2.
+            return unsafe { forward_avx2(block, w, h, k, z) };
+        }
+        forward_generic::<false>(block, w, h, k, z)
+    }
+
+    /// Backward substitution: `z[..w] ← T⁻ᵀ (z[..w] − Bᵀ z[w..])`.
+    pub(super) fn backward(block: &[f64], w: usize, h: usize, k: usize, z: &mut [f64]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2.
+            return unsafe { backward_avx2(block, w, h, k, z) };
+        }
+        backward_generic::<false>(block, w, h, k, z)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn forward_avx2(block: &[f64], w: usize, h: usize, k: usize, z: &mut [f64]) {
+        forward_generic::<true>(block, w, h, k, z)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn backward_avx2(block: &[f64], w: usize, h: usize, k: usize, z: &mut [f64]) {
+        backward_generic::<true>(block, w, h, k, z)
+    }
+
+    /// Asks for the first cache lines of the columns `j..j + 4` from row `j` on.
+    #[inline(always)]
+    fn prefetch(block: &[f64], h: usize, j: usize, w: usize) {
+        #[cfg(target_arch = "x86_64")]
+        for q in j..(j + 4).min(w) {
+            let at = q * h + j;
+            if at < block.len() {
+                // SAFETY: a prefetch of an address inside `block` (no access is made).
+                unsafe {
+                    use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+                    let p = block.as_ptr().add(at) as *const i8;
+                    _mm_prefetch::<_MM_HINT_T0>(p);
+                    _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64));
+                }
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = (block, h, j, w);
+    }
+
+    #[inline(always)]
+    pub(super) fn forward_generic<const AVX2: bool>(block: &[f64], w: usize, h: usize, k: usize, z: &mut [f64]) {
+        let column = |j: usize, from: usize| &block[j * h + from..(j + 1) * h];
+        for j0 in (0..w).step_by(4) {
+            let jb = (w - j0).min(4);
+            prefetch(block, h, j0 + 4, w);
+            for zc in z.chunks_exact_mut(h).take(k) {
+                // The triangle: z_j /= T_jj, then z_i -= T_ij z_j inside it.
+                for j in j0..j0 + jb {
+                    let col = column(j, 0);
+                    let v = zc[j] / col[j];
+                    zc[j] = v;
+                    for i in j + 1..j0 + jb {
+                        zc[i] -= col[i] * v;
+                    }
+                }
+                // Every row below: z_i -= Σ_q L_iq z_q.
+                if jb == 4 {
+                    let a = [-zc[j0], -zc[j0 + 1], -zc[j0 + 2], -zc[j0 + 3]];
+                    let b =
+                        [column(j0, j0 + 4), column(j0 + 1, j0 + 4), column(j0 + 2, j0 + 4), column(j0 + 3, j0 + 4)];
+                    axpy4::<AVX2>(&mut zc[j0 + 4..], b, a);
+                } else {
+                    for j in j0..j0 + jb {
+                        let v = zc[j];
+                        let (_, below) = zc.split_at_mut(j0 + jb);
+                        for (zi, &l) in below.iter_mut().zip(column(j, j0 + jb)) {
+                            *zi -= l * v;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[inline(always)]
+    pub(super) fn backward_generic<const AVX2: bool>(block: &[f64], w: usize, h: usize, k: usize, z: &mut [f64]) {
+        let column = |j: usize, from: usize| &block[j * h + from..(j + 1) * h];
+        for j0 in (0..w).step_by(4).rev() {
+            let jb = (w - j0).min(4);
+            if j0 >= 4 {
+                prefetch(block, h, j0 - 4, w);
+            }
+            for zc in z.chunks_exact_mut(h).take(k) {
+                // Every row below: z_q -= Σ_i L_iq z_i.
+                let (head, below) = zc.split_at_mut(j0 + jb);
+                if jb == 4 {
+                    let b =
+                        [column(j0, j0 + 4), column(j0 + 1, j0 + 4), column(j0 + 2, j0 + 4), column(j0 + 3, j0 + 4)];
+                    let d = dot4::<AVX2>(b, below);
+                    for q in 0..4 {
+                        head[j0 + q] -= d[q];
+                    }
+                } else {
+                    for j in j0..j0 + jb {
+                        head[j] -= dot(column(j, j0 + jb), below);
+                    }
+                }
+                // The triangle, from its last row up: z_j = (z_j − Σ_{i>j} T_ij z_i) / T_jj.
+                for j in (j0..j0 + jb).rev() {
+                    let col = column(j, 0);
+                    let mut s = head[j];
+                    for i in j + 1..j0 + jb {
+                        s -= col[i] * head[i];
+                    }
+                    head[j] = s / col[j];
+                }
+            }
+        }
+    }
+
+    /// `y += Σ_q b_q a_q` over the rows of `y` (each `b_q` at least as long), four rows at a
+    /// time in one vector each.
+    #[inline(always)]
+    fn axpy4<const AVX2: bool>(y: &mut [f64], b: [&[f64]; 4], a: [f64; 4]) {
+        let m = y.len();
+        let b = b.map(|c| &c[..m]);
+        let mut i = 0;
+        #[cfg(target_arch = "x86_64")]
+        if AVX2 {
+            use std::arch::x86_64::*;
+            // SAFETY: AVX2 is enabled in the callers with AVX2 = true; every access is below m.
+            unsafe {
+                let a = a.map(|v| _mm256_set1_pd(v));
+                let (yp, bp) = (y.as_mut_ptr(), b.map(|c| c.as_ptr()));
+                while i + 4 <= m {
+                    let t = |q: usize| _mm256_mul_pd(_mm256_loadu_pd(bp[q].add(i)), a[q]);
+                    let s = _mm256_add_pd(_mm256_add_pd(t(0), t(1)), _mm256_add_pd(t(2), t(3)));
+                    _mm256_storeu_pd(yp.add(i), _mm256_add_pd(_mm256_loadu_pd(yp.add(i)), s));
+                    i += 4;
+                }
+            }
+        }
+        for i in i..m {
+            y[i] += ((b[0][i] * a[0]) + (b[1][i] * a[1])) + ((b[2][i] * a[2]) + (b[3][i] * a[3]));
+        }
+    }
+
+    /// `[Σ_i b_q[i] y[i]]_q` for four columns `b_q` (at least as long as `y`), in four-lane
+    /// partial sums.
+    #[inline(always)]
+    fn dot4<const AVX2: bool>(b: [&[f64]; 4], y: &[f64]) -> [f64; 4] {
+        let m = y.len();
+        let b = b.map(|c| &c[..m]);
+        // Eight partial sums per column (lane l: the rows i ≡ l mod 8), added in a fixed order.
+        let mut acc = [[0.0f64; 8]; 4];
+        let mut i = 0;
+        #[cfg(target_arch = "x86_64")]
+        if AVX2 {
+            use std::arch::x86_64::*;
+            // SAFETY: AVX2 is enabled in the callers with AVX2 = true; every access is below m.
+            unsafe {
+                let (yp, bp) = (y.as_ptr(), b.map(|c| c.as_ptr()));
+                let mut v = [[_mm256_setzero_pd(); 2]; 4];
+                while i + 8 <= m {
+                    let y0 = _mm256_loadu_pd(yp.add(i));
+                    let y1 = _mm256_loadu_pd(yp.add(i + 4));
+                    for q in 0..4 {
+                        v[q][0] = _mm256_add_pd(v[q][0], _mm256_mul_pd(_mm256_loadu_pd(bp[q].add(i)), y0));
+                        v[q][1] = _mm256_add_pd(v[q][1], _mm256_mul_pd(_mm256_loadu_pd(bp[q].add(i + 4)), y1));
+                    }
+                    i += 8;
+                }
+                for q in 0..4 {
+                    _mm256_storeu_pd(acc[q].as_mut_ptr(), v[q][0]);
+                    _mm256_storeu_pd(acc[q].as_mut_ptr().add(4), v[q][1]);
+                }
+            }
+        }
+        if !AVX2 {
+            while i + 8 <= m {
+                for q in 0..4 {
+                    for l in 0..8 {
+                        acc[q][l] += b[q][i + l] * y[i + l];
+                    }
+                }
+                i += 8;
+            }
+        }
+        let mut out = acc.map(|a| ((a[0] + a[4]) + (a[2] + a[6])) + ((a[1] + a[5]) + (a[3] + a[7])));
+        for i in i..m {
+            for q in 0..4 {
+                out[q] += b[q][i] * y[i];
+            }
+        }
+        out
+    }
+
+    /// `Σ aᵢ bᵢ` over the shorter length, in eight interleaved partial sums (vector lanes).
+    #[inline(always)]
+    fn dot(a: &[f64], b: &[f64]) -> f64 {
+        let n = a.len().min(b.len());
+        let (a, b) = (&a[..n], &b[..n]);
+        let mut acc = [0.0f64; 8];
+        let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
+        let (ra, rb) = (ca.remainder(), cb.remainder());
+        for (x, y) in ca.zip(cb) {
+            for l in 0..8 {
+                acc[l] += x[l] * y[l];
+            }
+        }
+        let mut s = ((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7]));
+        for (x, y) in ra.iter().zip(rb) {
+            s += x * y;
+        }
+        s
+    }
+}
+
 /// Triangular solves with a supernodal factor for a few right-hand sides at once, split over
 /// two threads along the elimination tree.
 ///
@@ -299,13 +542,11 @@ mod tests;
 /// own solve runs on one thread (its parallel mode splits the dense blocks, which are small);
 /// here two independent subtrees of the elimination tree are solved concurrently, each thread
 /// reading its share of `L` once, and the few supernodes above them (the first separators of a
-/// nested dissection) sequentially. The right-hand sides are interleaved (row-major) so that
-/// each scattered row update touches one cache line.
+/// nested dissection) sequentially. The dense work per supernode is done by [`kernels`]:
+/// faer's general matrix products pack their operands and cost ~4× the bandwidth floor on
+/// these thin (few-column) products.
 mod tree_solve {
-    use faer::linalg::{matmul, triangular_solve};
-    use faer::reborrow::{Reborrow, ReborrowMut};
     use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
-    use faer::{Accum, Mat, MatMut, MatRef, Par};
 
     /// Supernodes per thread and the ones above them.
     #[derive(Debug, Default)]
@@ -396,12 +637,12 @@ mod tree_solve {
         Some(TreeSplit { groups, top, top_slot, top_rows })
     }
 
-    /// A raw view of the right-hand sides (unit row stride, column stride `cs`) shared by the
+    /// A raw view of the right-hand sides (row-major: row `r`'s `k` values contiguous, so that
+    /// a scattered row update touches one cache line) shared by the
     /// two threads.
     #[derive(Clone, Copy)]
     struct Shared {
         ptr: *mut f64,
-        cs: usize,
         k: usize,
     }
     // SAFETY: the threads write disjoint rows (their own subtrees'); rows of the top
@@ -411,18 +652,10 @@ mod tree_solve {
     unsafe impl Sync for Shared {}
 
     impl Shared {
-        /// Rows `start..start + w`, all columns.
-        ///
-        /// # Safety
-        /// No other live view overlaps these rows.
-        unsafe fn rows<'a>(self, start: usize, w: usize) -> MatMut<'a, f64> {
-            MatMut::from_raw_parts_mut(self.ptr.add(start), w, self.k, 1, self.cs as isize)
-        }
-
         /// # Safety
         /// Row `r` is not being written by another thread.
         unsafe fn at(self, r: usize, c: usize) -> *mut f64 {
-            self.ptr.add(c * self.cs + r)
+            self.ptr.add(r * self.k + c)
         }
     }
 
@@ -430,25 +663,24 @@ mod tree_solve {
     enum Sink<'a> {
         /// Straight into `x`.
         Direct,
-        /// Into a buffer (column-major, `top_rows` rows) indexed by the top slot.
-        Buffer(&'a [u32], &'a mut [f64], usize),
+        /// Into a buffer (row-major, `top_rows` rows) indexed by the top slot.
+        Buffer(&'a [u32], &'a mut [f64]),
     }
 
-    /// The supernode's block of `L`: rows (its columns, then its pattern) × its columns.
+    /// The supernode's block of `L`: its first row, its pattern (the rows below its columns)
+    /// and its values, column-major with leading dimension `w + pattern.len()`.
     fn block<'a>(
         sym: &'a SymbolicSupernodalCholesky<u32>,
         values: &'a [f64],
         s: usize,
-    ) -> (usize, &'a [u32], MatRef<'a, f64>) {
+    ) -> (usize, &'a [u32], &'a [f64]) {
         let node = sym.supernode(s);
-        let (start, pattern) = (node.start(), node.pattern());
-        let w = sym.supernode_end()[s] as usize - start;
         let vals = &values[sym.col_ptr_for_val()[s] as usize..sym.col_ptr_for_val()[s + 1] as usize];
-        (start, pattern, MatRef::from_column_major_slice(vals, w + pattern.len(), w))
+        (node.start(), node.pattern(), vals)
     }
 
-    /// `L y = b` for supernode `s`: the diagonal block solved in place, then the off-diagonal
-    /// block's product (faer's dense kernels) subtracted from the pattern rows or the sink.
+    /// `L y = b` for supernode `s` ([`super::kernels::forward`]): its own rows solved, the
+    /// products with its pattern rows subtracted from those rows or the sink.
     ///
     /// # Safety
     /// No other thread touches this supernode's rows or, with [`Sink::Direct`], the rows of
@@ -459,125 +691,145 @@ mod tree_solve {
         s: usize,
         x: Shared,
         sink: &mut Sink<'_>,
-        tmp: &mut Mat<f64>,
+        z: &mut Vec<f64>,
     ) {
-        let (start, pattern, ls) = block(sym, values, s);
-        let w = ls.ncols();
-        let (top, bottom) = ls.split_at_row(w);
-        let mut xt = x.rows(start, w);
-        triangular_solve::solve_lower_triangular_in_place(top, xt.rb_mut(), Par::Seq);
-        let m = pattern.len();
-        if m == 0 {
-            return;
-        }
-        tmp.resize_with(m, x.k, |_, _| 0.0);
-        matmul::matmul(tmp.as_mut(), Accum::Replace, bottom, xt.rb(), 1.0, Par::Seq);
-        for c in 0..x.k {
-            for (idx, &r) in pattern.iter().enumerate() {
-                let r = r as usize;
-                let v = tmp[(idx, c)];
-                match sink {
-                    Sink::Buffer(slot, buf, rows) if slot[r] != u32::MAX => buf[c * *rows + slot[r] as usize] -= v,
-                    _ => *x.at(r, c) -= v,
+        let (start, pattern, block) = block(sym, values, s);
+        let (w, m, k) = (sym.supernode_end()[s] as usize - start, pattern.len(), x.k);
+        let h = w + m;
+        gather_own(z, x, start, w, h);
+        super::kernels::forward(block, w, h, k, z);
+        put_back(z, x, start, w, h);
+        // z's pattern rows hold −B x: added to the rows they belong to.
+        for (idx, &r) in pattern.iter().enumerate() {
+            let r = r as usize;
+            let row: &mut [f64] = match sink {
+                Sink::Buffer(slot, buf) if slot[r] != u32::MAX => {
+                    let t = slot[r] as usize;
+                    &mut buf[t * k..(t + 1) * k]
                 }
+                _ => std::slice::from_raw_parts_mut(x.at(r, 0), k),
+            };
+            for (c, v) in row.iter_mut().enumerate() {
+                *v += z[c * h + w + idx];
             }
         }
     }
 
-    /// `Lᵀ x = y` for supernode `s`: the pattern rows gathered, the off-diagonal block's
-    /// transpose applied, then the diagonal block's transpose solved.
+    /// `Lᵀ x = y` for supernode `s` ([`super::kernels::backward`]): its own rows and its
+    /// pattern's gathered, its own rows solved.
     ///
     /// # Safety
     /// As [`forward`]; the rows of the pattern are only read.
-    unsafe fn backward(sym: &SymbolicSupernodalCholesky<u32>, values: &[f64], s: usize, x: Shared, tmp: &mut Mat<f64>) {
-        let (start, pattern, ls) = block(sym, values, s);
-        let w = ls.ncols();
-        let (top, bottom) = ls.split_at_row(w);
-        let m = pattern.len();
-        let mut xt = x.rows(start, w);
-        if m > 0 {
-            tmp.resize_with(m, x.k, |_, _| 0.0);
-            for c in 0..x.k {
-                for (idx, &r) in pattern.iter().enumerate() {
-                    tmp[(idx, c)] = *x.at(r as usize, c);
-                }
+    unsafe fn backward(sym: &SymbolicSupernodalCholesky<u32>, values: &[f64], s: usize, x: Shared, z: &mut Vec<f64>) {
+        let (start, pattern, block) = block(sym, values, s);
+        let (w, m, k) = (sym.supernode_end()[s] as usize - start, pattern.len(), x.k);
+        let h = w + m;
+        gather_own(z, x, start, w, h);
+        for (idx, &r) in pattern.iter().enumerate() {
+            let row = std::slice::from_raw_parts(x.at(r as usize, 0), k);
+            for (c, &v) in row.iter().enumerate() {
+                z[c * h + w + idx] = v;
             }
-            matmul::matmul(xt.rb_mut(), Accum::Add, bottom.transpose(), tmp.as_ref(), -1.0, Par::Seq);
         }
-        triangular_solve::solve_upper_triangular_in_place(top.transpose(), xt, Par::Seq);
+        super::kernels::backward(block, w, h, k, z);
+        put_back(z, x, start, w, h);
     }
 
-    /// Solves `L Lᵀ x = b` in place (`x`: the permuted right-hand sides, `n × k`).
-    pub(super) fn solve(sym: &SymbolicSupernodalCholesky<u32>, values: &[f64], split: &TreeSplit, x: MatMut<'_, f64>) {
-        let k = x.ncols();
-        let mut x = x;
-        // A column-major copy when `x` is not column-major.
-        let column_major = x.row_stride() == 1 && x.col_stride() >= x.nrows() as isize;
-        let mut owned = if column_major { None } else { Some(x.to_owned()) };
-        let (ptr, cs) = match owned.as_mut() {
-            Some(o) => (o.as_ptr_mut(), o.col_stride() as usize),
-            None => (x.as_ptr_mut(), x.col_stride() as usize),
-        };
-        let shared = Shared { ptr, cs, k };
+    /// `z` (column-major `h × k`) ← the rows `start..start + w` of `x` on top, zeros below.
+    ///
+    /// # Safety
+    /// Rows `start..start + w` of `x` are not being written by another thread.
+    unsafe fn gather_own(z: &mut Vec<f64>, x: Shared, start: usize, w: usize, h: usize) {
+        let k = x.k;
+        z.clear();
+        z.resize(h * k, 0.0);
+        let rows = std::slice::from_raw_parts(x.at(start, 0), w * k);
+        for (j, row) in rows.chunks_exact(k).enumerate() {
+            for (c, &v) in row.iter().enumerate() {
+                z[c * h + j] = v;
+            }
+        }
+    }
+
+    /// The top `w` rows of `z` back into rows `start..start + w` of `x`.
+    ///
+    /// # Safety
+    /// No other thread touches rows `start..start + w` of `x`.
+    unsafe fn put_back(z: &[f64], x: Shared, start: usize, w: usize, h: usize) {
+        let k = x.k;
+        let rows = std::slice::from_raw_parts_mut(x.at(start, 0), w * k);
+        for (j, row) in rows.chunks_exact_mut(k).enumerate() {
+            for (c, v) in row.iter_mut().enumerate() {
+                *v = z[c * h + j];
+            }
+        }
+    }
+
+    /// Solves `L Lᵀ x = b` in place (`x`: the permuted right-hand sides, row-major `n × k`).
+    pub(super) fn solve(
+        sym: &SymbolicSupernodalCholesky<u32>,
+        values: &[f64],
+        split: &TreeSplit,
+        x: &mut [f64],
+        k: usize,
+    ) {
+        let shared = Shared { ptr: x.as_mut_ptr(), k };
         let rows = split.top_rows;
         let mut buf = vec![0.0; rows * k];
         // SAFETY (all blocks below): see `Shared`; the groups hold disjoint subtrees, whose
         // patterns reach only their own rows and the top supernodes' rows.
         rayon::join(
             || {
-                let (shared, mut tmp) = (shared, Mat::<f64>::zeros(0, 0));
+                let (shared, mut z) = (shared, Vec::new());
                 for r in &split.groups[0] {
                     for s in r.clone() {
-                        unsafe { forward(sym, values, s, shared, &mut Sink::Direct, &mut tmp) };
+                        unsafe { forward(sym, values, s, shared, &mut Sink::Direct, &mut z) };
                     }
                 }
             },
             || {
-                let (shared, mut tmp) = (shared, Mat::<f64>::zeros(0, 0));
-                let mut sink = Sink::Buffer(&split.top_slot, &mut buf, rows);
+                let (shared, mut z) = (shared, Vec::new());
+                let mut sink = Sink::Buffer(&split.top_slot, &mut buf);
                 for r in &split.groups[1] {
                     for s in r.clone() {
-                        unsafe { forward(sym, values, s, shared, &mut sink, &mut tmp) };
+                        unsafe { forward(sym, values, s, shared, &mut sink, &mut z) };
                     }
                 }
             },
         );
         let begin = sym.supernode_begin();
-        let mut tmp = Mat::<f64>::zeros(0, 0);
+        let mut z = Vec::new();
         for &s in &split.top {
             for row in begin[s] as usize..sym.supernode_end()[s] as usize {
                 let t = split.top_slot[row] as usize;
                 for c in 0..k {
-                    unsafe { *shared.at(row, c) += buf[c * rows + t] };
+                    unsafe { *shared.at(row, c) += buf[t * k + c] };
                 }
             }
         }
         for &s in &split.top {
-            unsafe { forward(sym, values, s, shared, &mut Sink::Direct, &mut tmp) };
+            unsafe { forward(sym, values, s, shared, &mut Sink::Direct, &mut z) };
         }
         for &s in split.top.iter().rev() {
-            unsafe { backward(sym, values, s, shared, &mut tmp) };
+            unsafe { backward(sym, values, s, shared, &mut z) };
         }
         rayon::join(
             || {
-                let (shared, mut tmp) = (shared, Mat::<f64>::zeros(0, 0));
+                let (shared, mut z) = (shared, Vec::new());
                 for r in split.groups[0].iter().rev() {
                     for s in r.clone().rev() {
-                        unsafe { backward(sym, values, s, shared, &mut tmp) };
+                        unsafe { backward(sym, values, s, shared, &mut z) };
                     }
                 }
             },
             || {
-                let (shared, mut tmp) = (shared, Mat::<f64>::zeros(0, 0));
+                let (shared, mut z) = (shared, Vec::new());
                 for r in split.groups[1].iter().rev() {
                     for s in r.clone().rev() {
-                        unsafe { backward(sym, values, s, shared, &mut tmp) };
+                        unsafe { backward(sym, values, s, shared, &mut z) };
                     }
                 }
             },
         );
-        if let Some(o) = owned {
-            x.copy_from(&o);
-        }
     }
 }
