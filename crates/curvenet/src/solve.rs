@@ -42,7 +42,7 @@ const TREE_SOLVE_FROM: usize = 5000;
 
 /// Unknowns from which the numeric factorisation uses all cores.
 #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
-const PARALLEL_FROM: usize = 250_000;
+pub(crate) const PARALLEL_FROM: usize = 250_000;
 
 /// The symbolic analysis and how its elimination tree splits between two threads.
 struct Symbolic {

@@ -110,19 +110,22 @@ pub(crate) fn propagate(
             let clock = Instant::now();
             let q = product_lower(&ops.ls, &inv_m, &ops.ls, nc);
             t.operators += clock.elapsed().as_secs_f64();
-            // The right-hand sides on the other core while the factorisation runs (its numeric
-            // phase runs on one thread below 250k unknowns). Stage times: the
-            // factorisation's own; the rest of the window, if any, to the operators.
+            // Below `PARALLEL_FROM` unknowns the numeric factorisation runs on one thread: the
+            // right-hand sides are computed on the other core meanwhile. Above, the
+            // factorisation uses every core and they follow it (less memory at its peak).
+            // Stage times: the factorisation's own; the rest of the window to the operators.
+            let factor = || {
+                let clock = Instant::now();
+                let chol = factor_on(mesh, &q, nc, "propagation system (L² V* = 0)");
+                (chol, clock.elapsed().as_secs_f64())
+            };
             let window = Instant::now();
-            let (chol, rhs) = rayon::join(
-                || {
-                    let clock = Instant::now();
-                    let chol = factor_on(mesh, &q, nc, "propagation system (L² V* = 0)");
-                    (chol, clock.elapsed().as_secs_f64())
-                },
-                right_hand_sides,
-            );
-            let (chol, factor_time) = chol;
+            let ((chol, factor_time), rhs) = if q.ncols < crate::solve::PARALLEL_FROM {
+                rayon::join(factor, right_hand_sides)
+            } else {
+                let c = factor();
+                (c, right_hand_sides())
+            };
             t.factor += factor_time;
             t.operators += (window.elapsed().as_secs_f64() - factor_time).max(0.0);
             (chol?, rhs)
