@@ -115,25 +115,63 @@ pub fn stage_mesh(path: &Path, mesh: MeshData<'_>) -> Result<Staged> {
     })
 }
 
-/// Formats `count` records in parallel chunks (each record appended to a byte buffer by
-/// `record`) and writes them in order: text output at several million lines per second.
+/// Formats `count` records in chunks (each record appended to a byte buffer by `record`) and
+/// writes them in order. Formatting runs on as many threads as rayon's pool has, taking the
+/// chunks in order, while the calling thread writes each chunk as soon as it and those before
+/// it are ready (the file system's copy overlaps the formatting): text output at several
+/// million lines per second.
 fn write_records(w: &mut dyn Write, count: usize, record: impl Fn(usize, &mut Vec<u8>) + Sync) -> std::io::Result<()> {
-    use rayon::prelude::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::{Condvar, Mutex};
     const CHUNK: usize = 16384;
-    let chunks: Vec<Vec<u8>> = (0..count.div_ceil(CHUNK))
-        .into_par_iter()
-        .map(|c| {
-            let mut buf = Vec::with_capacity(CHUNK * 64);
-            for i in c * CHUNK..((c + 1) * CHUNK).min(count) {
-                record(i, &mut buf);
-            }
-            buf
-        })
-        .collect();
-    for c in chunks {
-        w.write_all(&c)?;
+    let chunks = count.div_ceil(CHUNK);
+    let format = |c: usize| {
+        let mut buf = Vec::with_capacity(CHUNK * 64);
+        for i in c * CHUNK..((c + 1) * CHUNK).min(count) {
+            record(i, &mut buf);
+        }
+        buf
+    };
+    let threads = rayon::current_num_threads();
+    // One thread (WebAssembly, RAYON_NUM_THREADS=1) or a single chunk: format and write in turn.
+    if chunks < 2 || threads < 2 || cfg!(target_arch = "wasm32") {
+        for c in 0..chunks {
+            w.write_all(&format(c))?;
+        }
+        return Ok(());
     }
-    Ok(())
+    let next = AtomicUsize::new(0);
+    let slots: Mutex<Vec<Option<Vec<u8>>>> = Mutex::new(vec![None; chunks]);
+    let ready = Condvar::new();
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| loop {
+                let c = next.fetch_add(1, Ordering::Relaxed);
+                if c >= chunks {
+                    break;
+                }
+                let buf = format(c);
+                slots.lock().unwrap_or_else(|e| e.into_inner())[c] = Some(buf);
+                ready.notify_all();
+            });
+        }
+        for c in 0..chunks {
+            let mut guard = slots.lock().unwrap_or_else(|e| e.into_inner());
+            let buf = loop {
+                match guard[c].take() {
+                    Some(b) => break b,
+                    None => guard = ready.wait(guard).unwrap_or_else(|e| e.into_inner()),
+                }
+            };
+            drop(guard);
+            if let Err(e) = w.write_all(&buf) {
+                // Stop the formatters at their next chunk.
+                next.store(chunks, Ordering::Relaxed);
+                return Err(e);
+            }
+        }
+        Ok(())
+    })
 }
 
 /// Appends a float with the shortest representation that reads back exactly.
@@ -158,22 +196,26 @@ fn put_vec3(buf: &mut Vec<u8>, head: &[u8], p: DVec3) {
 
 fn write_obj(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
     writeln!(w, "# written by curvenet: {} vertices, {} faces", m.positions.len(), m.faces.len())?;
-    write_records(w, m.positions.len(), |i, b| put_vec3(b, b"v ", m.positions[i]))?;
-    if let Some(ns) = m.normals {
-        write_records(w, ns.len(), |i, b| put_vec3(b, b"vn ", ns[i]))?;
-    }
-    let with_normals = m.normals.is_some();
-    write_records(w, m.faces.len(), |i, b| {
-        b.push(b'f');
-        for &v in &m.faces[i] {
-            b.push(b' ');
-            put_u32(b, v + 1);
-            if with_normals {
-                b.extend_from_slice(b"//");
+    // One stream of records: the positions, the normals, then the faces.
+    let n = m.positions.len();
+    let normals = m.normals.map_or(0, |ns| ns.len());
+    write_records(w, n + normals + m.faces.len(), |i, b| {
+        if i < n {
+            put_vec3(b, b"v ", m.positions[i]);
+        } else if let Some(ns) = m.normals.filter(|_| i < n + normals) {
+            put_vec3(b, b"vn ", ns[i - n]);
+        } else {
+            b.push(b'f');
+            for &v in &m.faces[i - n - normals] {
+                b.push(b' ');
                 put_u32(b, v + 1);
+                if normals > 0 {
+                    b.extend_from_slice(b"//");
+                    put_u32(b, v + 1);
+                }
             }
+            b.push(b'\n');
         }
-        b.push(b'\n');
     })
 }
 
