@@ -728,8 +728,13 @@ fn merge(res: &Resampled, parts: Vec<Result<PatchMesh>>) -> Result<Mesh> {
         pattern: Default::default(),
         fold_fallback: Vec::new(),
     };
+    let parts = parts.into_iter().collect::<Result<Vec<PatchMesh>>>()?;
+    let (new, tris) = parts.iter().fold((0, 0), |(v, t), p| (v + p.new_positions.len(), t + p.triangles.len()));
+    mesh.positions.reserve_exact(new);
+    mesh.faces.reserve_exact(tris);
+    mesh.planar.reserve_exact(tris);
+    mesh.face_patch.reserve_exact(tris);
     for (pi, part) in parts.into_iter().enumerate() {
-        let part = part?;
         if part.fold_fallback {
             mesh.fold_fallback.push(pi);
         }
