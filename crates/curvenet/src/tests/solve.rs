@@ -195,3 +195,59 @@ fn supernode_kernels_match_dense_substitution() {
         }
     }
 }
+
+#[test]
+fn an_analysis_ahead_of_the_values_factors_them() {
+    // Two halves of a grid as the parts; the analysis sees only the pattern (zero values).
+    let l = grid(40);
+    let q = crate::sparse::product_lower(&l, &vec![1.0; l.ncols], &l, 0);
+    let n = q.ncols;
+    let parts: Vec<u32> = (0..n).map(|i| u32::from(i % 40 >= 20)).collect();
+    let mut pattern = q.clone();
+    pattern.values.iter_mut().for_each(|v| *v = 0.0);
+    let analysis = Cholesky::analyse_in_parts(&pattern, "grid", &parts).unwrap();
+    let direct = Cholesky::factor_in_parts(&q, "grid", Some(&parts)).unwrap();
+    let early = analysis.factor(&q, "grid").unwrap();
+    assert!(std::sync::Arc::ptr_eq(&early.symbolic, &analysis.symbolic), "the analysis is reused");
+    let b = Mat::<f64>::from_fn(n, 3, |i, c| ((i * 5 + c) % 11) as f64 - 5.0);
+    let (mut x, mut y) = (b.clone(), b.clone());
+    direct.solve_in_place(x.as_mut());
+    early.solve_in_place(y.as_mut());
+    for c in 0..3 {
+        for i in 0..n {
+            assert!((x[(i, c)] - y[(i, c)]).abs() < 1e-10 * (1.0 + x[(i, c)].abs()));
+        }
+    }
+    // A matrix whose pattern lost an entry is analysed afresh, not factored on the old tree.
+    let mut thinner = q.clone();
+    let last = thinner.col_ptr[1] - 1; // the last entry of column 0 (below the diagonal)
+    thinner.row_idx.remove(last);
+    thinner.values.remove(last);
+    for p in thinner.col_ptr[1..].iter_mut() {
+        *p -= 1;
+    }
+    let refit = analysis.factor(&thinner, "grid").unwrap();
+    assert!(!std::sync::Arc::ptr_eq(&refit.symbolic, &analysis.symbolic));
+    let mut z = b.clone();
+    refit.solve_in_place(z.as_mut());
+    // Residual with the symmetric matrix (the lower triangle mirrored).
+    let mut r = vec![[0.0f64; 3]; n];
+    for j in 0..n {
+        for k in thinner.col_ptr[j]..thinner.col_ptr[j + 1] {
+            let (i, v) = (thinner.row_idx[k] as usize, thinner.values[k]);
+            for c in 0..3 {
+                r[i][c] += v * z[(j, c)];
+                if i != j {
+                    r[j][c] += v * z[(i, c)];
+                }
+            }
+        }
+    }
+    for c in 0..3 {
+        for i in 0..n {
+            assert!((r[i][c] - b[(i, c)]).abs() < 1e-8, "residual at ({i}, {c})");
+        }
+    }
+    // Parts of the wrong length are an error.
+    assert!(Cholesky::analyse_in_parts(&pattern, "grid", &parts[1..]).is_err());
+}
