@@ -12,7 +12,7 @@ use crate::methods::method4::method4;
 use crate::methods::normal_control::{normal_control, normal_control_cached, Factors, NormalControlParams};
 use crate::methods::polyharmonic::polyharmonic;
 use crate::methods::short_paper::{short_paper, ShortPaperParams};
-use crate::methods::{analyse_while_assembling, GuideArea, Method, SolveTimings, Weighting};
+use crate::methods::{GuideArea, Method, SolveTimings, Weighting};
 use crate::network::Network;
 use crate::operators::{cotan_operators, normals_and_mean_curvature, Metric};
 use crate::tessellate::{flatten_patches, tessellate, tessellate_conformal, VERTICES_PER_AREA};
@@ -560,21 +560,8 @@ pub(crate) fn solve_prepared(
                st: &mut SolveTimings,
                factors: &mut Factors| {
         let clock = Instant::now();
-        // Normal-control's first factorisation: its symbolic analysis needs only the
-        // connectivity and runs on the other core while the operators are assembled (stage
-        // times: the analysis's own to the factorisation, the rest of the window here).
-        let ops = if options.method == Method::NormalControl && factors.propagation.is_none() {
-            let (ops, early, analysis_time) =
-                analyse_while_assembling(mesh, || cotan_operators(mesh, metric, metric_positions))?;
-            factors.early = early;
-            st.factor += analysis_time;
-            st.operators += (clock.elapsed().as_secs_f64() - analysis_time).max(0.0);
-            ops
-        } else {
-            let ops = cotan_operators(mesh, metric, metric_positions);
-            st.operators += clock.elapsed().as_secs_f64();
-            ops
-        };
+        let ops = cotan_operators(mesh, metric, metric_positions);
+        st.operators += clock.elapsed().as_secs_f64();
         if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
             let patch = mesh.faces.iter().position(|f| f.contains(&(i as u32))).map(|f| mesh.face_patch[f]);
             let at = patch.map_or_else(String::new, |p| format!(" of patch {p}"));

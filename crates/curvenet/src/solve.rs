@@ -50,31 +50,6 @@ struct Symbolic {
     split: Option<tree_solve::TreeSplit>,
 }
 
-/// The symbolic analysis of a system along its parts ([`Cholesky::analyse_in_parts`]),
-/// computed from the pattern alone; [`Analysis::factor`] adds the numeric factorisation.
-pub struct Analysis {
-    symbolic: Arc<Symbolic>,
-    /// Fingerprint of the analysed pattern.
-    pattern: u64,
-    /// The part of each unknown (names a failed pivot's patch).
-    parts: Vec<u32>,
-}
-
-impl Analysis {
-    /// The numeric factorisation of `q` on this analysis; a `q` whose pattern differs from the
-    /// analysed one (an entry that cancelled exactly, say) is analysed afresh.
-    pub fn factor(&self, q: &Csc, what: &str) -> Result<Cholesky> {
-        let p = &self.parts;
-        let describe = |j: usize| format!("free vertex {j} of patch {}", p[j]);
-        if fingerprint(q) != self.pattern {
-            let again = Cholesky::analyse_in_parts(q, what, p)?;
-            return again.factor(q, what);
-        }
-        let values = with_faer(q, what, |a| numeric(&self.symbolic.chol, a, what, &describe))??;
-        Ok(Cholesky { symbolic: Arc::clone(&self.symbolic), pattern: self.pattern, values })
-    }
-}
-
 /// A Cholesky factorisation `Q = L Lᵀ` of a sparse symmetric positive definite matrix.
 ///
 /// The symbolic analysis (fill-reducing ordering, elimination tree, supernodes) depends only
@@ -116,23 +91,17 @@ impl Cholesky {
     /// [`Cholesky::factor`].
     pub fn factor_in_parts(q: &Csc, what: &str, parts: Option<&[u32]>) -> Result<Self> {
         match parts {
-            Some(p) if p.len() == q.ncols => Self::analyse_in_parts(q, what, p)?.factor(q, what),
+            Some(p) if p.len() == q.ncols => {
+                let order =
+                    (q.ncols >= Ordering::PARTS_FROM).then(|| crate::ordering::nested_dissection_in_parts(q, p));
+                let order = order.or_else(|| {
+                    (q.ncols >= Ordering::NESTED_DISSECTION_FROM).then(|| crate::ordering::nested_dissection(q))
+                });
+                // A failed pivot names the patch of its unknown.
+                Self::factor_named(q, what, order.as_deref(), &|j| format!("free vertex {j} of patch {}", p[j]))
+            }
             _ => Self::factor(q, what),
         }
-    }
-
-    /// The symbolic half of [`Cholesky::factor_in_parts`] (the ordering along the parts, the
-    /// elimination tree, the supernodes): it reads only the pattern of `q` (its values may be
-    /// zero), so it can run before the values are assembled. `parts.len()` must be `q.ncols`.
-    pub fn analyse_in_parts(q: &Csc, what: &str, parts: &[u32]) -> Result<Analysis> {
-        if parts.len() != q.ncols {
-            return Err(Error::Usage(format!("{what}: {} parts for {} unknowns", parts.len(), q.ncols)));
-        }
-        let order = (q.ncols >= Ordering::PARTS_FROM).then(|| crate::ordering::nested_dissection_in_parts(q, parts));
-        let order = order
-            .or_else(|| (q.ncols >= Ordering::NESTED_DISSECTION_FROM).then(|| crate::ordering::nested_dissection(q)));
-        let symbolic = Self::analyse(q, what, order.as_deref())?;
-        Ok(Analysis { symbolic, pattern: fingerprint(q), parts: parts.to_vec() })
     }
 
     /// Factorises `q` with the elimination order `order` (`order[k]`: the unknown eliminated
@@ -159,13 +128,6 @@ impl Cholesky {
 
     /// [`Cholesky::factor_with`]; `describe(j)` names unknown `j` when its pivot fails.
     fn factor_named(q: &Csc, what: &str, order: Option<&[u32]>, describe: &dyn Fn(usize) -> String) -> Result<Self> {
-        let symbolic = Self::analyse(q, what, order)?;
-        let values = with_faer(q, what, |a| numeric(&symbolic.chol, a, what, describe))??;
-        Ok(Cholesky { symbolic, pattern: fingerprint(q), values })
-    }
-
-    /// The symbolic factorisation of `q`'s pattern with `order` (a valid permutation) or AMD.
-    fn analyse(q: &Csc, what: &str, order: Option<&[u32]>) -> Result<Arc<Symbolic>> {
         let inv: Vec<u32>;
         let ord = match order {
             Some(fwd) => {
@@ -186,7 +148,9 @@ impl Cholesky {
             SymbolicCholeskyRaw::Supernodal(sym) if q.ncols >= TREE_SOLVE_FROM => tree_solve::split(sym),
             _ => None,
         };
-        Ok(Arc::new(Symbolic { chol: symbolic, split }))
+        let symbolic = Arc::new(Symbolic { chol: symbolic, split });
+        let values = with_faer(q, what, |a| numeric(&symbolic.chol, a, what, describe))??;
+        Ok(Cholesky { symbolic, pattern: fingerprint(q), values })
     }
 
     /// Factorises `q`, reusing this factorisation's symbolic analysis when `q` has the same

@@ -28,7 +28,7 @@ use faer::Mat;
 /// Runs method (4) on `mesh` with the operators `ops`.
 pub fn method4(mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<MethodResult> {
     let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
-    let Propagation { v_star, n_star, .. } = propagate(mesh, ops, t, None, None)?;
+    let Propagation { v_star, n_star, .. } = propagate(mesh, ops, t, None)?;
     if n == nc {
         return Ok(MethodResult { positions: v_star, propagated_normals: Some(n_star), guide_curvature: None });
     }

@@ -185,57 +185,6 @@ pub(crate) fn factor_on(mesh: &Mesh, q: &Csc, first: usize, what: &str) -> crate
     Cholesky::factor_in_parts(q, what, parts.as_deref())
 }
 
-/// The propagation system's symbolic analysis and matrix, prepared ahead of
-/// [`normal_control::propagate`] (see [`analyse_while_assembling`]).
-pub(crate) struct Early {
-    pub analysis: crate::solve::Analysis,
-    /// `(Ls M⁻¹ Ls)_ff`, lower triangle, for the operators it was assembled with.
-    pub q: crate::sparse::Csc,
-}
-
-/// The cotangent operators of `mesh` (`assemble`) and, on the other core meanwhile, the
-/// symbolic analysis of the propagation system `(Ls M⁻¹ Ls)_ff`
-/// ([`crate::solve::Cholesky::analyse_in_parts`]), which needs only the connectivity (the
-/// pattern of `Ls Ls` on the free vertices, every weight taken as non-zero); then the system's
-/// values. Returns the operators, the prepared system (`None` without free vertices) and the
-/// analysis's own time (factorisation work: the caller books it there).
-pub(crate) fn analyse_while_assembling(
-    mesh: &Mesh,
-    assemble: impl FnOnce() -> crate::operators::Operators + Send,
-) -> crate::error::Result<(crate::operators::Operators, Option<Early>, f64)> {
-    let nc = mesh.num_curve;
-    let _ = mesh.laplacian_pattern(); // shared by both sides
-    let analyse = || {
-        let clock = crate::clock::Instant::now();
-        let analysis = (mesh.num_vertices() > nc).then(|| {
-            let mut ls = mesh.laplacian_pattern().csc.clone();
-            ls.values.iter_mut().for_each(|v| *v = 1.0);
-            let ones = vec![1.0; ls.ncols];
-            let pattern = crate::sparse::product_lower(&ls, &ones, &ls, nc);
-            crate::solve::Cholesky::analyse_in_parts(
-                &pattern,
-                "propagation system (L² V* = 0)",
-                &mesh.free_vertex_patches(),
-            )
-        });
-        (analysis, clock.elapsed().as_secs_f64())
-    };
-    let values = || {
-        let ops = assemble();
-        let q = (mesh.num_vertices() > nc).then(|| {
-            let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
-            crate::sparse::product_lower(&ops.ls, &inv_m, &ops.ls, nc)
-        });
-        (ops, q)
-    };
-    let ((analysis, seconds), (ops, q)) = rayon::join(analyse, values);
-    let early = match (analysis, q) {
-        (Some(a), Some(q)) => Some(Early { analysis: a?, q }),
-        _ => None,
-    };
-    Ok((ops, early, seconds))
-}
-
 pub(crate) fn check_finite(p: &[DVec3], what: &str) -> crate::error::Result<()> {
     if let Some(i) = p.iter().position(|v| !v.is_finite()) {
         return Err(crate::error::Error::Numerical(format!(

@@ -23,7 +23,7 @@
 //! 5. Soft constraints ([CG] §4.5): `+ ω_s Σ_{s ∈ curve} ‖v_s − v*_s‖²`, all vertices unknown.
 
 use super::{
-    check_finite, factor_on, known_rows, scatter, weighted_rhs, Early, GuideArea, MethodResult, SolveTimings, Weighting,
+    check_finite, factor_on, known_rows, scatter, weighted_rhs, GuideArea, MethodResult, SolveTimings, Weighting,
 };
 use crate::clock::Instant;
 use crate::error::{Error, Result};
@@ -69,9 +69,6 @@ pub struct Factors {
     /// The fit's matrix when it differs from the propagation's (open borders, uniform
     /// weighting, soft constraints).
     pub(crate) fit: Option<Cholesky>,
-    /// The propagation system's analysis and matrix, prepared while the operators were
-    /// assembled ([`super::analyse_while_assembling`]); consumed by the factorisation.
-    pub(crate) early: Option<Early>,
 }
 
 impl Factors {
@@ -89,7 +86,6 @@ pub(crate) fn propagate(
     ops: &Operators,
     t: &mut SolveTimings,
     cached: Option<Cholesky>,
-    early: Option<Early>,
 ) -> Result<Propagation> {
     let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
     let mut v_star = mesh.positions.clone();
@@ -112,10 +108,7 @@ pub(crate) fn propagate(
         }
         None => {
             let clock = Instant::now();
-            let (q, analysis) = match early {
-                Some(Early { analysis, q }) => (q, Some(analysis)),
-                None => (product_lower(&ops.ls, &inv_m, &ops.ls, nc), None),
-            };
+            let q = product_lower(&ops.ls, &inv_m, &ops.ls, nc);
             t.operators += clock.elapsed().as_secs_f64();
             // Below `PARALLEL_FROM` unknowns the numeric factorisation runs on one thread: the
             // right-hand sides are computed on the other core meanwhile. Above, the
@@ -123,11 +116,7 @@ pub(crate) fn propagate(
             // Stage times: the factorisation's own; the rest of the window to the operators.
             let factor = || {
                 let clock = Instant::now();
-                let what = "propagation system (L² V* = 0)";
-                let chol = match &analysis {
-                    Some(a) => a.factor(&q, what),
-                    None => factor_on(mesh, &q, nc, what),
-                };
+                let chol = factor_on(mesh, &q, nc, "propagation system (L² V* = 0)");
                 (chol, clock.elapsed().as_secs_f64())
             };
             let window = Instant::now();
@@ -184,8 +173,7 @@ pub fn normal_control_cached(
     factors: &mut Factors,
 ) -> Result<MethodResult> {
     let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
-    let Propagation { v_star, n_star, chol: prop } =
-        propagate(mesh, ops, t, factors.propagation.take(), factors.early.take())?;
+    let Propagation { v_star, n_star, chol: prop } = propagate(mesh, ops, t, factors.propagation.take())?;
     let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
     if n == nc {
         // No free vertex: the mesh is the curves' (patches without interior points).

@@ -36,7 +36,7 @@ pub fn short_paper(
     t: &mut SolveTimings,
 ) -> Result<MethodResult> {
     let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
-    let Propagation { v_star, n_star, .. } = propagate(mesh, ops, t, None, None)?;
+    let Propagation { v_star, n_star, .. } = propagate(mesh, ops, t, None)?;
     let first = if params.omega0.is_some() { 0 } else { nc };
     if n == first {
         return Ok(MethodResult { positions: v_star, propagated_normals: Some(n_star), guide_curvature: None });
