@@ -75,15 +75,21 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
     if r.zipped > 0 {
         dropped += &format!("; welded {} boundary vertex pair(s) across cracks", r.zipped);
     }
-    if r.dropped_bad > 0 {
+    if r.cut_bad > 0 {
         dropped += &format!(
-            "; left out {} section(s) still crossing another curve at a shallow angle or twice nearby after {} plane moves",
-            r.dropped_bad,
+            "; cut {} section(s) where they still crossed another curve at a shallow angle, twice nearby or nearly after {} plane moves (the stretch between the crossings around each such spot left out)",
+            r.cut_bad,
             curvenet::sampling::MAX_PLANE_MOVES
         );
     }
     if r.small_holes > 0 {
-        dropped += &format!("; covered {} hole(s) smaller than 3 sample spacings", r.small_holes);
+        dropped += &format!("; covered {} hole(s) smaller than 3 sample spacings or slit-shaped", r.small_holes);
+    }
+    if r.single_contact_holes > 0 {
+        dropped += &format!(
+            "; covered {} hole(s) that a single section reached (that section's end cut back to its last crossing)",
+            r.single_contact_holes
+        );
     }
     if r.trimmed > 0 {
         dropped += &format!("; cut back {} section end(s) that ran along the boundary", r.trimmed);

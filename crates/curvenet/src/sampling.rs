@@ -103,9 +103,14 @@ pub struct SampleReport {
     pub unresolved: usize,
     /// Section ends cut back where they ran along the mesh boundary ([`SampleOptions`]).
     pub trimmed: usize,
-    /// Sections left out because they still crossed another curve at a shallow angle (or
-    /// twice, or nearly) after the plane moves.
-    pub dropped_bad: usize,
+    /// Sections cut at bad spots: a shallow crossing, two crossings close together or a
+    /// near miss still there after the plane moves, or a section end on the boundary too close
+    /// to another one. Each loses the stretch between the crossings on either side of the spot
+    /// ([`MAX_PLANE_MOVES`]).
+    pub cut_bad: usize,
+    /// Boundary loops left out because a single section reached them (the hole is covered;
+    /// that section's end is cut back to its last crossing).
+    pub single_contact_holes: usize,
     /// Boundary loops left out because they are smaller than 3 sample spacings across.
     pub small_holes: usize,
 }
@@ -127,6 +132,8 @@ struct Traced {
     closed: bool,
     boundary: bool,
     name: String,
+    /// A piece of a section cut at a bad spot ([`cut_at_spots`]): it may end at crossings.
+    cut: bool,
 }
 
 /// Angle-weighted vertex normals (each face's unit normal weighted by its corner angle), unit
@@ -655,6 +662,7 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
                 closed,
                 boundary: false,
                 name: format!("{}={:.6} #{piece}", axis_name[axis], lev),
+                cut: false,
             });
             piece += 1;
         }
@@ -674,9 +682,21 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     }
     let mut report =
         SampleReport { spacing, crossings, pinches, zipped, unresolved, trimmed: report_trimmed, ..Default::default() };
-    // Two section ends on the boundary closer than `gap` (the boundary nearly touching itself,
-    // or a cut-back end moved next to another one): the pipeline would merge them into a node
-    // with too many boundary ends. The shorter of the two pieces is left out.
+    // Where each section must be cut: the planes' bad spots still left after the plane moves,
+    // and section ends on the boundary closer than `gap` to another one (the boundary nearly
+    // touching itself, or a cut-back end moved next to another one: the pipeline would merge
+    // them into a node with too many boundary ends; the shorter piece's end is cut).
+    let mut spots: Vec<Vec<DVec3>> = traced
+        .iter()
+        .map(|t| match t.plane {
+            Some(p) => unresolved_at
+                .iter()
+                .filter(|(q, at)| *q == p && t.samples.iter().any(|r| r.p.distance(*at) <= gap))
+                .map(|x| x.1)
+                .collect(),
+            None => Vec::new(),
+        })
+        .collect();
     let ends: Vec<(usize, DVec3, f64)> = traced
         .iter()
         .enumerate()
@@ -686,56 +706,129 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
             [(i, t.samples[0].p, len), (i, t.samples[t.samples.len() - 1].p, len)]
         })
         .collect();
-    let mut crowded = vec![false; traced.len()];
+    let mut crowded = vec![false; ends.len()];
     for (a, ea) in ends.iter().enumerate() {
-        for eb in &ends[a + 1..] {
-            if ea.0 != eb.0 && ea.1.distance(eb.1) <= gap && !crowded[ea.0] && !crowded[eb.0] {
-                crowded[if ea.2 <= eb.2 { ea.0 } else { eb.0 }] = true;
+        for (b, eb) in ends.iter().enumerate().skip(a + 1) {
+            if ea.0 != eb.0 && ea.1.distance(eb.1) <= gap && !crowded[a] && !crowded[b] {
+                let (k, e) = if ea.2 <= eb.2 { (a, ea) } else { (b, eb) };
+                crowded[k] = true;
+                spots[e.0].push(e.1);
+            }
+        }
+    }
+    // A section in a bad spot loses the stretch around it, between the crossings on either
+    // side (the rest of the section still bounds patches, ending on those crossings).
+    let mut pieces: Vec<Traced> = Vec::new();
+    for (t, s) in traced.into_iter().zip(&spots) {
+        if s.is_empty() {
+            pieces.push(t);
+            continue;
+        }
+        report.cut_bad += 1;
+        pieces.extend(cut_at_spots(t, s, gap));
+    }
+    // Sections that meet no other curve (a crossing inside; the ends on the boundary do not
+    // count, nor do a cut piece's ends alone if they are not crossings) are left out.
+    pieces.retain(|t| {
+        let nodes = t.samples.iter().filter(|s| s.node).count();
+        let meets = if t.closed { nodes > 0 } else { nodes > 2 || (t.cut && nodes == 2) };
+        if !meets {
+            report.dropped_sections += 1;
+        }
+        meets
+    });
+    // Boundary loops: each section end on the loop is a node sample of it. Loops around holes
+    // too small or too thin to be sampled as curves are left out (the hole covered). A loop
+    // that no section reaches bounds no patch of the network; a loop that one section reaches
+    // would bound a hole inside a patch joined to the rest by that section only (a bridge the
+    // pipeline cannot surface: patches are disks): it is left out too, the hole covered. The
+    // ends of sections on a loop left out are cut back to their last crossing (they would
+    // dangle); repeated, since a cut may leave another loop with one section.
+    let key = |p: DVec3| p.to_array().map(f64::to_bits);
+    let mut loop_at: HashMap<[u64; 3], usize> = HashMap::new();
+    let mut loops_kept = vec![true; boundary_loops.len()];
+    let mut loop_curves: Vec<Option<(Vec<DVec3>, Vec<DVec3>)>> = Vec::with_capacity(boundary_loops.len());
+    for (li, l) in boundary_loops.iter().enumerate() {
+        for r in l.samples.iter().filter(|r| r.node) {
+            loop_at.insert(key(r.p), li);
+        }
+        // A hole smaller than a few sample spacings, or slit-shaped (its sides within `near`
+        // of each other), would run alongside itself.
+        let (points, normals) = resample(&l.samples, true, spacing, opts.shared_nodes);
+        let small = Aabb::of(l.samples.iter().map(|r| r.p)).diagonal() < 3.0 * spacing
+            || (points.len() <= 40 && thin_loop(&points, near));
+        if small {
+            report.small_holes += 1;
+            loops_kept[li] = false;
+        }
+        loop_curves.push(Some((points, normals)));
+    }
+    for _ in 0..=boundary_loops.len() + pieces.len() {
+        // Section ends per loop: (piece, at its first sample).
+        let mut contacts: Vec<Vec<(usize, bool)>> = vec![Vec::new(); boundary_loops.len()];
+        for (i, t) in pieces.iter().enumerate().filter(|(_, t)| !t.closed) {
+            for (first, r) in [(true, t.samples[0]), (false, t.samples[t.samples.len() - 1])] {
+                if let Some(&li) = loop_at.get(&key(r.p)).filter(|_| r.node) {
+                    contacts[li].push((i, first));
+                }
+            }
+        }
+        for (li, c) in contacts.iter().enumerate() {
+            if loops_kept[li] && c.len() < 2 {
+                loops_kept[li] = false;
+                if c.is_empty() {
+                    report.dropped_boundary_loops += 1;
+                } else {
+                    report.single_contact_holes += 1;
+                }
+            }
+        }
+        // Every open piece must end where another curve passes: on a kept boundary loop, or
+        // (a piece cut at a bad spot) on a crossing of a kept section. The crossing samples are
+        // shared by both curves, so the ends are found by position. Other ends are cut back
+        // to the piece's last crossing.
+        let mut on_sections: HashMap<[u64; 3], Vec<usize>> = HashMap::new();
+        for (i, t) in pieces.iter().enumerate() {
+            for r in t.samples.iter().filter(|r| r.node) {
+                on_sections.entry(key(r.p)).or_default().push(i);
+            }
+        }
+        let supported = |i: usize, r: Raw| {
+            r.node
+                && (loop_at.get(&key(r.p)).is_some_and(|&li| loops_kept[li])
+                    || on_sections.get(&key(r.p)).is_some_and(|l| l.iter().any(|&j| j != i)))
+        };
+        let mut cut_ends: Vec<Vec<DVec3>> = vec![Vec::new(); pieces.len()];
+        for (i, t) in pieces.iter().enumerate().filter(|(_, t)| !t.closed) {
+            for r in [t.samples[0], t.samples[t.samples.len() - 1]] {
+                if !supported(i, r) {
+                    cut_ends[i].push(r.p);
+                }
+            }
+        }
+        if cut_ends.iter().all(|c| c.is_empty()) {
+            break;
+        }
+        let old = std::mem::take(&mut pieces);
+        for (t, ends) in old.into_iter().zip(cut_ends) {
+            if ends.is_empty() {
+                pieces.push(t);
+            } else {
+                pieces.extend(
+                    cut_at_spots(t, &ends, 0.0)
+                        .into_iter()
+                        .filter(|t| t.samples.iter().filter(|s| s.node).count() >= 2),
+                );
             }
         }
     }
     let mut curves = Vec::new();
-    for (ti, t) in
-        traced.into_iter().enumerate().map(|(i, t)| (Some(i), t)).chain(boundary_loops.into_iter().map(|t| (None, t)))
-    {
-        if ti.is_some_and(|i| crowded[i]) {
-            report.dropped_bad += 1;
-            continue;
-        }
-        // A section still in a bad crossing after the plane moves is left out.
-        if let Some(p) = t.plane {
-            let bad_here =
-                unresolved_at.iter().any(|(q, at)| *q == p && t.samples.iter().any(|r| r.p.distance(*at) <= gap));
-            if bad_here {
-                report.dropped_bad += 1;
-                continue;
-            }
-        }
-        // A boundary loop around a hole smaller than a few sample spacings cannot be sampled
-        // as a curve (it would run alongside itself): the hole is left out (covered).
-        if t.boundary && Aabb::of(t.samples.iter().map(|r| r.p)).diagonal() < 3.0 * spacing {
-            report.small_holes += 1;
-            continue;
-        }
-        // Meets another curve: a crossing inside, or (boundary loops) a section end.
-        let interior_nodes = t.samples.iter().filter(|s| s.node).count();
-        let meets = if t.boundary || t.closed { interior_nodes > 0 } else { interior_nodes > 2 };
-        if !meets {
-            if t.boundary {
-                report.dropped_boundary_loops += 1;
-            } else {
-                report.dropped_sections += 1;
-            }
-            continue;
-        }
-        let (mut points, mut normals) = resample(&t.samples, t.closed, spacing, opts.shared_nodes);
+    let kept_loops =
+        boundary_loops.into_iter().zip(loop_curves).zip(loops_kept).filter(|(_, k)| *k).map(|((t, pn), _)| (t, pn));
+    for (t, pn) in pieces.into_iter().map(|t| (t, None)).chain(kept_loops) {
+        let (mut points, mut normals) =
+            pn.unwrap_or_else(|| resample(&t.samples, t.closed, spacing, opts.shared_nodes));
         report.hairpins += remove_hairpins(&mut points, &mut normals, t.closed, near);
-        // A small boundary loop whose sides come within `near` of each other (a slit-shaped
-        // hole) would run alongside itself: the hole is left out (covered).
-        if t.boundary && points.len() <= 40 && thin_loop(&points, near) {
-            report.small_holes += 1;
-            continue;
-        }
         let need = if t.closed { 3 } else { 2 };
         if points.len() < need {
             continue;
@@ -1031,7 +1124,7 @@ fn trace_boundary(
                 }
             }
             let name = format!("boundary #{}", loops.len());
-            loops.push(Traced { plane: None, samples, closed: true, boundary: true, name });
+            loops.push(Traced { plane: None, samples, closed: true, boundary: true, name, cut: false });
         }
     }
     loops
@@ -1130,6 +1223,81 @@ fn trim_along(
     samples.drain(0..k - 1);
     samples[0] = end;
     Some(e)
+}
+
+/// Cuts a traced section at `spots`: around each spot, the samples within `gap` of it (at
+/// least the nearest one) are removed, and on either side the samples up to the nearest node
+/// (a crossing, or an end on the boundary), which is kept as the end of the piece there.
+/// Returns the pieces left (open, flagged `cut`), named after the section with a suffix;
+/// pieces shorter than `gap / 2` are left out.
+fn cut_at_spots(t: Traced, spots: &[DVec3], gap: f64) -> Vec<Traced> {
+    let m = t.samples.len();
+    let mut remove = vec![false; m];
+    let step = |k: usize, forward: bool| -> Option<usize> {
+        match (forward, t.closed) {
+            (true, true) => Some((k + 1) % m),
+            (false, true) => Some((k + m - 1) % m),
+            (true, false) => (k + 1 < m).then_some(k + 1),
+            (false, false) => k.checked_sub(1),
+        }
+    };
+    for &spot in spots {
+        let Some(i) = (0..m)
+            .min_by(|&a, &b| t.samples[a].p.distance_squared(spot).total_cmp(&t.samples[b].p.distance_squared(spot)))
+        else {
+            continue;
+        };
+        remove[i] = true;
+        for forward in [true, false] {
+            // The run within `gap` of the spot, then on to the next node.
+            let mut k = i;
+            let mut in_run = true;
+            for _ in 0..m {
+                let Some(next) = step(k, forward) else { break };
+                if remove[next] && next == i {
+                    break;
+                }
+                in_run = in_run && t.samples[next].p.distance(spot) <= gap;
+                if !in_run && t.samples[next].node {
+                    break;
+                }
+                remove[next] = true;
+                k = next;
+            }
+        }
+    }
+    // Runs of kept samples; a closed section starts after a removed sample.
+    let start = if t.closed { (0..m).find(|&k| remove[k]).map_or(0, |k| (k + 1) % m) } else { 0 };
+    let mut runs: Vec<Vec<Raw>> = Vec::new();
+    let mut current: Vec<Raw> = Vec::new();
+    for j in 0..m {
+        let k = (start + j) % m;
+        if remove[k] {
+            if !current.is_empty() {
+                runs.push(std::mem::take(&mut current));
+            }
+        } else {
+            current.push(t.samples[k]);
+        }
+    }
+    if !current.is_empty() {
+        runs.push(current);
+    }
+    if remove.iter().all(|&r| !r) {
+        return vec![t];
+    }
+    runs.into_iter()
+        .filter(|r| r.len() >= 2 && r.windows(2).map(|w| w[0].p.distance(w[1].p)).sum::<f64>() >= 0.5 * gap)
+        .enumerate()
+        .map(|(k, samples)| Traced {
+            plane: t.plane,
+            samples,
+            closed: false,
+            boundary: t.boundary,
+            name: format!("{}.{}", t.name, k + 1),
+            cut: true,
+        })
+        .collect()
 }
 
 /// A closed polyline two of whose non-adjacent edges come within `tol` of each other.
