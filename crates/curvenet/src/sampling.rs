@@ -784,13 +784,18 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
             }
         }
         // Every open piece must end where another curve passes: on a kept boundary loop, or
-        // (a piece cut at a bad spot) on a crossing of a kept section. The crossing samples are
+        // (a piece cut at a bad spot) on a crossing that a kept section passes through. The crossing samples are
         // shared by both curves, so the ends are found by position. Other ends are cut back
         // to the piece's last crossing.
+        // Crossings that a kept section passes through (not where it ends: two pieces ending
+        // on their own crossing would make a corner, not a junction).
         let mut on_sections: HashMap<[u64; 3], Vec<usize>> = HashMap::new();
         for (i, t) in pieces.iter().enumerate() {
-            for r in t.samples.iter().filter(|r| r.node) {
-                on_sections.entry(key(r.p)).or_default().push(i);
+            let m = t.samples.len();
+            for (k, r) in t.samples.iter().enumerate() {
+                if r.node && (t.closed || (k > 0 && k + 1 < m)) {
+                    on_sections.entry(key(r.p)).or_default().push(i);
+                }
             }
         }
         let supported = |i: usize, r: Raw| {

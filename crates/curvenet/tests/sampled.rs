@@ -95,10 +95,15 @@ fn real_meshes_when_present() {
         eprintln!("skipped: {} not found", dir.display());
         return;
     }
-    for (name, planes) in [("bumpy-cube.obj", 6), ("fandisk.off", 6), ("beetle.off", 8)] {
+    // The beetle at 6 and 10 planes: issue 5's failures (a crossing snapped past an open
+    // curve's end, a shallow meeting read as two nodes, holes reached by one section).
+    for (name, planes) in
+        [("bumpy-cube.obj", 6), ("fandisk.off", 6), ("beetle.off", 6), ("beetle.off", 8), ("beetle.off", 10)]
+    {
         let m = curvenet::io::read_mesh(&dir.join(name)).unwrap();
-        let (rel, _) = sample_and_measure(&m.positions, &m.faces, planes, 10000);
-        eprintln!("{name}: RMS {:.3}% of the diagonal", 100.0 * rel);
-        assert!(rel <= 0.005, "{name}: RMS {:.3}% of the diagonal", 100.0 * rel);
+        let (rel, s) = sample_and_measure(&m.positions, &m.faces, planes, 10000);
+        eprintln!("{name} at {planes} planes: RMS {:.3}% of the diagonal", 100.0 * rel);
+        assert!(rel <= 0.005, "{name} at {planes} planes: RMS {:.3}% of the diagonal", 100.0 * rel);
+        assert_eq!(s.stats.components, 1, "{name} at {planes} planes");
     }
 }
