@@ -3,7 +3,7 @@
 
 use clap::Args;
 use curvenet::io::{read_mesh, write_network};
-use curvenet::sampling::{sample_mesh, SampleOptions};
+use curvenet::sampling::{sample_mesh, CurveFamily, SampleOptions};
 use curvenet::Error;
 use std::io::Write;
 use std::path::PathBuf;
@@ -39,6 +39,12 @@ pub struct SampleArgs {
     /// (0: axis-aligned; then walls parallel to an axis are cut along coincident curves).
     #[arg(long, value_name = "DEG", default_value_t = SampleOptions::DEFAULT_TILT_DEG)]
     tilt: f64,
+    /// The curves: `planes` (plane sections in three directions) or `principal` (curves along
+    /// the principal curvature directions — a fixed axis projected on the surface where it is
+    /// isotropic — crossing at about 90°, the mean box extent over the mean --planes count
+    /// apart; crossings exact on the mesh, free ends cut back to their last crossing).
+    #[arg(long, value_name = "KIND", default_value = "planes", value_parser = ["planes", "principal"])]
+    curves: String,
 }
 
 fn parse_planes(s: &str) -> Result<[usize; 3], Error> {
@@ -61,6 +67,7 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
         shared_nodes: !a.no_shared_nodes,
         boundary: !a.no_boundary,
         tilt: a.tilt,
+        curves: if a.curves == "principal" { CurveFamily::Principal } else { CurveFamily::Planes },
     };
     let mesh = read_mesh(&a.mesh)?;
     let (net, r) = sample_mesh(&mesh.positions, &mesh.faces, &opts)?;
@@ -77,9 +84,16 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
     }
     if r.cut_bad > 0 {
         dropped += &format!(
-            "; cut {} section(s) where they still crossed another curve at a shallow angle, twice nearby or nearly after {} plane moves (the stretch between the crossings around each such spot left out)",
+            "; cut {} section(s) at bad spots (a shallow crossing, two crossings close together or a near miss left after {} plane moves, an end crowding another one on the boundary, a sharp turn): the stretch between the crossings around each spot left out",
             r.cut_bad,
             curvenet::sampling::MAX_PLANE_MOVES
+        );
+    }
+    if r.sharp_turns > 0 {
+        dropped += &format!(
+            "; cut sections at {} place(s) where they turned back by more than {}° within the surface (a plane grazing a sharp crease)",
+            r.sharp_turns,
+            curvenet::sampling::SHARP_TURN_DEG
         );
     }
     if r.small_holes > 0 {
@@ -101,9 +115,10 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
         dropped += &format!("; split {} pinch vertex(es) where the mesh boundary touches itself", r.pinches);
     }
     out!(
-        "{}: {} sections, {} boundary loops, {} crossings, {} samples, spacing {:.4e}{dropped}",
+        "{}: {} {}, {} boundary loops, {} crossings, {} samples, spacing {:.4e}{dropped}",
         a.output.display(),
         r.sections,
+        if a.curves == "principal" { "principal curves" } else { "sections" },
         r.boundary_loops,
         r.crossings,
         net.num_samples(),

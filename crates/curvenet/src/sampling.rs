@@ -21,6 +21,14 @@ use crate::geom::{Aabb, DVec3};
 use crate::network::{Curve, Network};
 use std::collections::HashMap;
 
+mod principal;
+
+/// Distance between the principal curves ([`CurveFamily::Principal`]) as a fraction of the
+/// distance between the section planes for the same `planes` counts: two families instead of
+/// three, and curves that stop short of the ones alongside them (measured on the test meshes:
+/// 2/3, the same curve length per area, leaves too large patches where curves stop).
+pub const PRINCIPAL_SEPARATION: f64 = 0.5;
+
 /// Options of [`sample_mesh`]; each maps onto a flag of `curvenet sample`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SampleOptions {
@@ -46,6 +54,22 @@ pub struct SampleOptions {
     /// (extruded CAD features) is cut by two families along the same lines, and the curves would
     /// overlap. Default [`SampleOptions::DEFAULT_TILT_DEG`].
     pub tilt: f64,
+    /// `--curves planes|principal`: plane sections (default), or curves along the principal
+    /// curvature directions ([`CurveFamily::Principal`]), [`PRINCIPAL_SEPARATION`] × the box's
+    /// mean extent over the mean of the `planes` counts apart.
+    pub curves: CurveFamily,
+}
+
+/// The curves [`sample_mesh`] draws on the mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CurveFamily {
+    /// Plane sections in three directions.
+    #[default]
+    Planes,
+    /// Streamlines of a cross field aligned with the principal curvature directions (a fixed
+    /// axis projected on the surface where it is isotropic), crossing at about 90°
+    /// ([`principal`]).
+    Principal,
 }
 
 impl SampleOptions {
@@ -72,6 +96,7 @@ impl Default for SampleOptions {
             shared_nodes: true,
             boundary: true,
             tilt: Self::DEFAULT_TILT_DEG,
+            curves: CurveFamily::Planes,
         }
     }
 }
@@ -103,11 +128,15 @@ pub struct SampleReport {
     pub unresolved: usize,
     /// Section ends cut back where they ran along the mesh boundary ([`SampleOptions`]).
     pub trimmed: usize,
-    /// Sections cut at bad spots: a shallow crossing, two crossings close together or a
-    /// near miss still there after the plane moves, or a section end on the boundary too close
-    /// to another one. Each loses the stretch between the crossings on either side of the spot
-    /// ([`MAX_PLANE_MOVES`]).
+    /// Sections cut at bad spots: a shallow crossing, two crossings close together or a near
+    /// miss still there after the plane moves ([`MAX_PLANE_MOVES`]), a section end on the
+    /// boundary too close to another one, a sharp turn ([`SampleReport::sharp_turns`]). Each
+    /// loses the stretch between the crossings on either side of the spot.
     pub cut_bad: usize,
+    /// Places where a section turns back within the surface by more than
+    /// [`SHARP_TURN_DEG`] (a plane grazing one side of a sharp crease): cut there like the bad
+    /// spots ([`SampleReport::cut_bad`]).
+    pub sharp_turns: usize,
     /// Boundary loops left out because a single section reached them (the hole is covered;
     /// that section's end is cut back to its last crossing).
     pub single_contact_holes: usize,
@@ -361,312 +390,328 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         )));
     }
 
-    // Section planes: axis, level, away from vertex levels ([`plane_level`]).
-    let dirs = section_directions(opts.tilt);
-    let mut planes: Vec<(usize, f64)> = Vec::new();
-    // Per plane: its nominal level, the sorted vertex levels along its axis, the slab width.
-    let mut nominal: Vec<f64> = Vec::new();
-    let mut axis_levels: Vec<Vec<f64>> = vec![Vec::new(); 3];
-    let mut slab_of = [0.0; 3];
-    for axis in 0..3 {
-        let k = opts.planes[axis];
-        let dir = dirs[axis];
-        let mut levels: Vec<f64> = positions.iter().map(|p| p.dot(dir)).collect();
-        levels.sort_by(f64::total_cmp);
-        let (lo, hi) = (levels[0], levels[levels.len() - 1]);
-        let ext = hi - lo;
-        if k == 0 || !(ext > 1e-9 * diag) {
-            continue;
-        }
-        let slab = ext / k as f64;
-        for i in 0..k {
-            let c = lo + (i as f64 + 0.5) * slab;
-            nominal.push(c);
-            planes.push((axis, plane_level(&levels, c, 0.3 * slab)));
-        }
-        axis_levels[axis] = levels;
-        slab_of[axis] = slab;
-    }
-
-    let edge_point = |e: (u32, u32), plane: (usize, f64)| -> (DVec3, DVec3) {
-        let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
-        let (sa, sb) = (a.dot(dirs[plane.0]) - plane.1, b.dot(dirs[plane.0]) - plane.1);
-        let t = (sa / (sa - sb)).clamp(0.0, 1.0);
-        let n = normals[e.0 as usize].lerp(normals[e.1 as usize], t);
-        (a.lerp(b, t), n)
-    };
-    let face_normal_at = |fi: usize, p: DVec3| -> DVec3 {
-        let v = faces[fi].map(|i| positions[i as usize]);
-        let area = (v[1] - v[0]).cross(v[2] - v[0]);
-        let a2 = area.length_squared();
-        if a2 == 0.0 {
-            return normals[faces[fi][0] as usize];
-        }
-        let w0 = (v[1] - p).cross(v[2] - p).dot(area) / a2;
-        let w1 = (v[2] - p).cross(v[0] - p).dot(area) / a2;
-        let w2 = 1.0 - w0 - w1;
-        let [n0, n1, n2] = faces[fi].map(|i| normals[i as usize]);
-        w0 * n0 + w1 * n1 + w2 * n2
-    };
-    let cos_min = MIN_CROSSING_ANGLE_DEG.to_radians().cos();
-    // Sections of two planes closer than `near` away from their crossings would be snapped
-    // together by the pipeline: twice its default snapping tolerance (Network::snap_tolerance).
-    let mut round = 0;
-    let unresolved;
-    let unresolved_at: Vec<(usize, DVec3)>;
-    let mut final_pass = false;
-    let mut best: Option<(usize, Vec<(usize, f64)>)> = None;
-    let mut rng = crate::network::Rng::new(0x5EC7);
-    let (cuts, crossing_at, mut crossings) = loop {
-        // Cut every face by every plane.
-        let mut cuts_of_face: Vec<Vec<usize>> = vec![Vec::new(); faces.len()];
-        let mut cuts: Vec<FaceCut> = Vec::new();
-        for (pi, &(axis, c)) in planes.iter().enumerate() {
-            for (fi, f) in faces.iter().enumerate() {
-                let side = f.map(|v| positions[v as usize].dot(dirs[axis]) > c);
-                if side[0] == side[1] && side[1] == side[2] {
-                    continue;
-                }
-                let mut edges = Vec::with_capacity(2);
-                for k in 0..3 {
-                    if side[k] != side[(k + 1) % 3] {
-                        edges.push(edge_key(f[k], f[(k + 1) % 3]));
-                    }
-                }
-                if edges.len() != 2 {
-                    continue;
-                }
-                let e = [edges[0], edges[1]];
-                let ends = e.map(|e| edge_point(e, (axis, c)).0);
-                cuts_of_face[fi].push(cuts.len());
-                cuts.push(FaceCut { plane: pi, edges: e, ends });
-            }
-        }
-        // Crossings: per face, for two cuts of different axes, the point of the first cut on
-        // the second's plane (the triangle's point on both planes), shared by both polylines.
-        // crossing_at[cut] = list of (parameter along ends[0] → ends[1], sample).
-        let mut crossing_at: Vec<Vec<(f64, Raw)>> = vec![Vec::new(); cuts.len()];
-        let mut crossings = 0usize;
-        let mut shallow: Vec<(usize, DVec3)> = Vec::new();
-        let mut crossing_points: HashMap<(usize, usize), Vec<DVec3>> = HashMap::new();
-        for (fi, list) in cuts_of_face.iter().enumerate() {
-            for (x, &ca) in list.iter().enumerate() {
-                for &cb in &list[x + 1..] {
-                    let (a, b) = (&cuts[ca], &cuts[cb]);
-                    let (axis_a, lev_a) = planes[a.plane];
-                    let (axis_b, lev_b) = planes[b.plane];
-                    if axis_a == axis_b {
-                        continue;
-                    }
-                    // Parameter on a where a's line meets b's plane, and on b where it meets a's.
-                    let (sa0, sa1) = (a.ends[0].dot(dirs[axis_b]) - lev_b, a.ends[1].dot(dirs[axis_b]) - lev_b);
-                    let (sb0, sb1) = (b.ends[0].dot(dirs[axis_a]) - lev_a, b.ends[1].dot(dirs[axis_a]) - lev_a);
-                    if (sa0 > 0.0) == (sa1 > 0.0) || (sb0 > 0.0) == (sb1 > 0.0) {
-                        continue;
-                    }
-                    let ta = sa0 / (sa0 - sa1);
-                    let tb = sb0 / (sb0 - sb1);
-                    let p = a.ends[0].lerp(a.ends[1], ta);
-                    let raw = Raw { p, n: face_normal_at(fi, p), node: true };
-                    crossing_at[ca].push((ta, raw));
-                    crossing_at[cb].push((tb, raw));
-                    crossings += 1;
-                    crossing_points.entry((a.plane.min(b.plane), a.plane.max(b.plane))).or_default().push(p);
-                    let (da, db) = (a.ends[1] - a.ends[0], b.ends[1] - b.ends[0]);
-                    let cos = da.dot(db).abs() / (da.length() * db.length());
-                    if cos > cos_min {
-                        shallow.push((b.plane, p));
-                    }
-                }
-            }
-        }
-        // The mesh boundary as a pseudo-plane (index planes.len()): sections must end on it at
-        // a fair angle and not run alongside it.
-        let boundary_plane = planes.len();
-        let mut with_boundary: Vec<FaceCut> = cuts.clone();
-        if opts.boundary {
-            for (e, fs) in &edge_faces {
-                if fs.len() == 1 {
-                    let ends = [positions[e.0 as usize], positions[e.1 as usize]];
-                    with_boundary.push(FaceCut { plane: boundary_plane, edges: [*e, *e], ends });
-                }
-            }
-            for c in &cuts {
-                for k in 0..2 {
-                    if edge_faces.get(&c.edges[k]).is_some_and(|f| f.len() == 1) {
-                        crossing_points.entry((c.plane, boundary_plane)).or_default().push(c.ends[k]);
-                        let e = positions[c.edges[k].1 as usize] - positions[c.edges[k].0 as usize];
-                        let d = c.ends[1] - c.ends[0];
-                        if d.dot(e).abs() / (d.length() * e.length()) > cos_min {
-                            shallow.push((c.plane, c.ends[k]));
-                        }
-                    }
-                }
-            }
-        }
-        shallow.extend(near_misses(&with_boundary, &crossing_points, near, boundary_plane));
-        // Crossings closer than `gap` to each other: two crossings of the same two sections
-        // (the pipeline would merge them into one node where the curves touch without
-        // crossing), or three sections nearly through one point (a tiny cell whose nodes the
-        // pipeline cannot tell apart once the crossings fall between noisy samples).
-        shallow.extend(close_crossings(&crossing_points, gap, gap_same, boundary_plane));
-        let mut bad: Vec<usize> = shallow.iter().map(|x| x.0).collect();
+    let principal = opts.curves == CurveFamily::Principal;
+    let (mut traced, ends_on_boundary, unresolved, unresolved_at, mut crossings, report_trimmed) = if principal {
+        // Curves along the principal directions, `separation` apart.
+        let ext = bbox.max - bbox.min;
+        let counts: Vec<f64> = opts.planes.iter().filter(|&&k| k > 0).map(|&k| k as f64).collect();
+        let mean_count = counts.iter().sum::<f64>() / counts.len().max(1) as f64;
+        let separation = PRINCIPAL_SEPARATION * (ext.x + ext.y + ext.z) / 3.0 / mean_count.max(1.0);
+        let axis = section_directions(opts.tilt)[2];
+        let r = principal::trace(positions, faces, &normals, &edge_faces, axis, separation, spacing, near, gap, diag);
+        let mut bad: Vec<usize> = r.spots.iter().map(|x| x.0).collect();
         bad.sort_unstable();
         bad.dedup();
-        round += 1;
-        if bad.is_empty() || final_pass {
-            unresolved = bad.len();
-            unresolved_at = shallow;
-            break (cuts, crossing_at, crossings);
-        }
-        if best.as_ref().is_none_or(|b| bad.len() < b.0) {
-            best = Some((bad.len(), planes.clone()));
-        }
-        if round > MAX_PLANE_MOVES {
-            // Out of moves: cut once more with the best configuration seen.
-            if let Some((_, p)) = best.take() {
-                planes = p;
-            }
-            final_pass = true;
-            continue;
-        }
-        // Move each plane in a bad crossing to a random level within ±45% of the slab width
-        // around its nominal level (deterministic: the generator has a fixed seed).
-        for pi in bad {
-            let axis = planes[pi].0;
-            let slab = slab_of[axis];
-            let offset = (2.0 * rng.uniform() - 1.0) * 0.45 * slab;
-            planes[pi].1 = plane_level(&axis_levels[axis], nominal[pi] + offset, 0.03 * slab);
-        }
-    };
-
-    // Chain the cuts of each plane into polylines through shared edges.
-    let mut traced: Vec<Traced> = Vec::new();
-    // Section end points on boundary edges, for the boundary loops: edge → (point, normal).
-    let mut ends_on_boundary: HashMap<(u32, u32), Vec<Raw>> = HashMap::new();
-    let mut report_trimmed = 0;
-    let boundary_grid = BoundaryGrid::new(positions, &edge_faces, 3.0 * snap);
-    // Boundary loop of each boundary vertex (components of the boundary edges).
-    let mut loop_uf = crate::topology::UnionFind::new(positions.len());
-    for (e, fs) in &edge_faces {
-        if fs.len() == 1 {
-            loop_uf.union(e.0 as usize, e.1 as usize);
-        }
-    }
-    let loop_of: Vec<usize> = (0..positions.len()).map(|v| loop_uf.find(v)).collect();
-    let mut cuts_of_plane: Vec<Vec<usize>> = vec![Vec::new(); planes.len()];
-    for (ci, c) in cuts.iter().enumerate() {
-        cuts_of_plane[c.plane].push(ci);
-    }
-    let axis_name = ["X", "Y", "Z"];
-    for (pi, list) in cuts_of_plane.iter().enumerate() {
-        let mut by_edge: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-        for &ci in list {
-            for e in cuts[ci].edges {
-                by_edge.entry(e).or_default().push(ci);
-            }
-        }
-        let mut used: HashMap<usize, bool> = list.iter().map(|&c| (c, false)).collect();
-        // Open chains start at a boundary edge (one cut), then closed loops.
-        let mut starts: Vec<(usize, usize)> = Vec::new();
-        for &ci in list {
-            for k in 0..2 {
-                if by_edge[&cuts[ci].edges[k]].len() == 1 {
-                    starts.push((ci, k));
-                }
-            }
-        }
-        let closed_starts: Vec<(usize, usize)> = list.iter().map(|&c| (c, 0)).collect();
-        let mut piece = 0;
-        for (ci0, k0) in starts.into_iter().chain(closed_starts) {
-            if used[&ci0] {
+        (r.traced, r.ends_on_boundary, bad.len(), r.spots, r.crossings, 0)
+    } else {
+        // Section planes: axis, level, away from vertex levels ([`plane_level`]).
+        let dirs = section_directions(opts.tilt);
+        let mut planes: Vec<(usize, f64)> = Vec::new();
+        // Per plane: its nominal level, the sorted vertex levels along its axis, the slab width.
+        let mut nominal: Vec<f64> = Vec::new();
+        let mut axis_levels: Vec<Vec<f64>> = vec![Vec::new(); 3];
+        let mut slab_of = [0.0; 3];
+        for axis in 0..3 {
+            let k = opts.planes[axis];
+            let dir = dirs[axis];
+            let mut levels: Vec<f64> = positions.iter().map(|p| p.dot(dir)).collect();
+            levels.sort_by(f64::total_cmp);
+            let (lo, hi) = (levels[0], levels[levels.len() - 1]);
+            let ext = hi - lo;
+            if k == 0 || !(ext > 1e-9 * diag) {
                 continue;
             }
-            let mut samples = Vec::new();
-            let (mut ci, mut enter) = (ci0, k0);
-            let closed;
-            loop {
-                *used.get_mut(&ci).unwrap_or(&mut false) = true;
-                let c = &cuts[ci];
-                let e_in = c.edges[enter];
-                let (p, n) = edge_point(e_in, planes[pi]);
-                samples.push(Raw { p, n, node: false });
-                let mut xs = crossing_at[ci].clone();
-                if enter == 0 {
-                    xs.sort_by(|a, b| a.0.total_cmp(&b.0));
-                } else {
-                    xs.sort_by(|a, b| b.0.total_cmp(&a.0));
-                }
-                samples.extend(xs.into_iter().map(|x| x.1));
-                let e_out = c.edges[1 - enter];
-                let next = by_edge[&e_out].iter().copied().find(|&o| o != ci);
-                match next {
-                    Some(o) if o == ci0 => {
-                        closed = true;
-                        break;
+            let slab = ext / k as f64;
+            for i in 0..k {
+                let c = lo + (i as f64 + 0.5) * slab;
+                nominal.push(c);
+                planes.push((axis, plane_level(&levels, c, 0.3 * slab)));
+            }
+            axis_levels[axis] = levels;
+            slab_of[axis] = slab;
+        }
+
+        let edge_point = |e: (u32, u32), plane: (usize, f64)| -> (DVec3, DVec3) {
+            let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
+            let (sa, sb) = (a.dot(dirs[plane.0]) - plane.1, b.dot(dirs[plane.0]) - plane.1);
+            let t = (sa / (sa - sb)).clamp(0.0, 1.0);
+            let n = normals[e.0 as usize].lerp(normals[e.1 as usize], t);
+            (a.lerp(b, t), n)
+        };
+        let face_normal_at = |fi: usize, p: DVec3| -> DVec3 {
+            let v = faces[fi].map(|i| positions[i as usize]);
+            let area = (v[1] - v[0]).cross(v[2] - v[0]);
+            let a2 = area.length_squared();
+            if a2 == 0.0 {
+                return normals[faces[fi][0] as usize];
+            }
+            let w0 = (v[1] - p).cross(v[2] - p).dot(area) / a2;
+            let w1 = (v[2] - p).cross(v[0] - p).dot(area) / a2;
+            let w2 = 1.0 - w0 - w1;
+            let [n0, n1, n2] = faces[fi].map(|i| normals[i as usize]);
+            w0 * n0 + w1 * n1 + w2 * n2
+        };
+        let cos_min = MIN_CROSSING_ANGLE_DEG.to_radians().cos();
+        // Sections of two planes closer than `near` away from their crossings would be snapped
+        // together by the pipeline: twice its default snapping tolerance (Network::snap_tolerance).
+        let mut round = 0;
+        let unresolved;
+        let unresolved_at: Vec<(usize, DVec3)>;
+        let mut final_pass = false;
+        let mut best: Option<(usize, Vec<(usize, f64)>)> = None;
+        let mut rng = crate::network::Rng::new(0x5EC7);
+        let (cuts, crossing_at, crossings) = loop {
+            // Cut every face by every plane.
+            let mut cuts_of_face: Vec<Vec<usize>> = vec![Vec::new(); faces.len()];
+            let mut cuts: Vec<FaceCut> = Vec::new();
+            for (pi, &(axis, c)) in planes.iter().enumerate() {
+                for (fi, f) in faces.iter().enumerate() {
+                    let side = f.map(|v| positions[v as usize].dot(dirs[axis]) > c);
+                    if side[0] == side[1] && side[1] == side[2] {
+                        continue;
                     }
-                    Some(o) if !used[&o] => {
-                        enter = if cuts[o].edges[0] == e_out { 0 } else { 1 };
-                        ci = o;
+                    let mut edges = Vec::with_capacity(2);
+                    for k in 0..3 {
+                        if side[k] != side[(k + 1) % 3] {
+                            edges.push(edge_key(f[k], f[(k + 1) % 3]));
+                        }
                     }
-                    _ => {
-                        let (p, n) = edge_point(e_out, planes[pi]);
-                        samples.push(Raw { p, n, node: false });
-                        closed = false;
-                        break;
+                    if edges.len() != 2 {
+                        continue;
                     }
+                    let e = [edges[0], edges[1]];
+                    let ends = e.map(|e| edge_point(e, (axis, c)).0);
+                    cuts_of_face[fi].push(cuts.len());
+                    cuts.push(FaceCut { plane: pi, edges: e, ends });
                 }
             }
-            if !closed {
-                // Ends on boundary edges meet the boundary loops there. An end that runs along
-                // the boundary first is cut back to where it leaves it (`trim_along`).
-                let mut end_edges = [cuts[ci0].edges[k0], cuts[ci].edges[1 - enter]];
-                if opts.boundary {
-                    for side in 0..2 {
-                        if edge_faces.get(&end_edges[side]).is_none_or(|f| f.len() != 1) {
+            // Crossings: per face, for two cuts of different axes, the point of the first cut on
+            // the second's plane (the triangle's point on both planes), shared by both polylines.
+            // crossing_at[cut] = list of (parameter along ends[0] → ends[1], sample).
+            let mut crossing_at: Vec<Vec<(f64, Raw)>> = vec![Vec::new(); cuts.len()];
+            let mut crossings = 0usize;
+            let mut shallow: Vec<(usize, DVec3)> = Vec::new();
+            let mut crossing_points: HashMap<(usize, usize), Vec<DVec3>> = HashMap::new();
+            for (fi, list) in cuts_of_face.iter().enumerate() {
+                for (x, &ca) in list.iter().enumerate() {
+                    for &cb in &list[x + 1..] {
+                        let (a, b) = (&cuts[ca], &cuts[cb]);
+                        let (axis_a, lev_a) = planes[a.plane];
+                        let (axis_b, lev_b) = planes[b.plane];
+                        if axis_a == axis_b {
                             continue;
                         }
-                        if side == 1 {
-                            samples.reverse();
+                        // Parameter on a where a's line meets b's plane, and on b where it meets a's.
+                        let (sa0, sa1) = (a.ends[0].dot(dirs[axis_b]) - lev_b, a.ends[1].dot(dirs[axis_b]) - lev_b);
+                        let (sb0, sb1) = (b.ends[0].dot(dirs[axis_a]) - lev_a, b.ends[1].dot(dirs[axis_a]) - lev_a);
+                        if (sa0 > 0.0) == (sa1 > 0.0) || (sb0 > 0.0) == (sb1 > 0.0) {
+                            continue;
                         }
-                        let same_loop = loop_of[end_edges[side].0 as usize];
-                        if let Some(e) = trim_along(
-                            &mut samples,
-                            &boundary_grid,
-                            3.0 * snap,
-                            positions,
-                            &normals,
-                            &|e: (u32, u32)| loop_of[e.0 as usize] == same_loop,
-                        ) {
-                            end_edges[side] = e;
-                            report_trimmed += 1;
+                        let ta = sa0 / (sa0 - sa1);
+                        let tb = sb0 / (sb0 - sb1);
+                        let p = a.ends[0].lerp(a.ends[1], ta);
+                        let raw = Raw { p, n: face_normal_at(fi, p), node: true };
+                        crossing_at[ca].push((ta, raw));
+                        crossing_at[cb].push((tb, raw));
+                        crossings += 1;
+                        crossing_points.entry((a.plane.min(b.plane), a.plane.max(b.plane))).or_default().push(p);
+                        let (da, db) = (a.ends[1] - a.ends[0], b.ends[1] - b.ends[0]);
+                        let cos = da.dot(db).abs() / (da.length() * db.length());
+                        if cos > cos_min {
+                            shallow.push((b.plane, p));
                         }
-                        if side == 1 {
-                            samples.reverse();
-                        }
-                    }
-                }
-                if samples.len() < 2 {
-                    continue;
-                }
-                for (e, raw) in [(end_edges[0], samples[0]), (end_edges[1], samples[samples.len() - 1])] {
-                    if edge_faces.get(&e).is_some_and(|f| f.len() == 1) {
-                        ends_on_boundary.entry(e).or_default().push(raw);
                     }
                 }
             }
-            let (axis, lev) = planes[pi];
-            traced.push(Traced {
-                plane: Some(pi),
-                samples,
-                closed,
-                boundary: false,
-                name: format!("{}={:.6} #{piece}", axis_name[axis], lev),
-                cut: false,
-            });
-            piece += 1;
+            // The mesh boundary as a pseudo-plane (index planes.len()): sections must end on it at
+            // a fair angle and not run alongside it.
+            let boundary_plane = planes.len();
+            let mut with_boundary: Vec<FaceCut> = cuts.clone();
+            if opts.boundary {
+                for (e, fs) in &edge_faces {
+                    if fs.len() == 1 {
+                        let ends = [positions[e.0 as usize], positions[e.1 as usize]];
+                        with_boundary.push(FaceCut { plane: boundary_plane, edges: [*e, *e], ends });
+                    }
+                }
+                for c in &cuts {
+                    for k in 0..2 {
+                        if edge_faces.get(&c.edges[k]).is_some_and(|f| f.len() == 1) {
+                            crossing_points.entry((c.plane, boundary_plane)).or_default().push(c.ends[k]);
+                            let e = positions[c.edges[k].1 as usize] - positions[c.edges[k].0 as usize];
+                            let d = c.ends[1] - c.ends[0];
+                            if d.dot(e).abs() / (d.length() * e.length()) > cos_min {
+                                shallow.push((c.plane, c.ends[k]));
+                            }
+                        }
+                    }
+                }
+            }
+            shallow.extend(near_misses(&with_boundary, &crossing_points, near, boundary_plane));
+            // Crossings closer than `gap` to each other: two crossings of the same two sections
+            // (the pipeline would merge them into one node where the curves touch without
+            // crossing), or three sections nearly through one point (a tiny cell whose nodes the
+            // pipeline cannot tell apart once the crossings fall between noisy samples).
+            shallow.extend(close_crossings(&crossing_points, gap, gap_same, boundary_plane));
+            let mut bad: Vec<usize> = shallow.iter().map(|x| x.0).collect();
+            bad.sort_unstable();
+            bad.dedup();
+            round += 1;
+            if bad.is_empty() || final_pass {
+                unresolved = bad.len();
+                unresolved_at = shallow;
+                break (cuts, crossing_at, crossings);
+            }
+            if best.as_ref().is_none_or(|b| bad.len() < b.0) {
+                best = Some((bad.len(), planes.clone()));
+            }
+            if round > MAX_PLANE_MOVES {
+                // Out of moves: cut once more with the best configuration seen.
+                if let Some((_, p)) = best.take() {
+                    planes = p;
+                }
+                final_pass = true;
+                continue;
+            }
+            // Move each plane in a bad crossing to a random level within ±45% of the slab width
+            // around its nominal level (deterministic: the generator has a fixed seed).
+            for pi in bad {
+                let axis = planes[pi].0;
+                let slab = slab_of[axis];
+                let offset = (2.0 * rng.uniform() - 1.0) * 0.45 * slab;
+                planes[pi].1 = plane_level(&axis_levels[axis], nominal[pi] + offset, 0.03 * slab);
+            }
+        };
+
+        // Chain the cuts of each plane into polylines through shared edges.
+        let mut traced: Vec<Traced> = Vec::new();
+        // Section end points on boundary edges, for the boundary loops: edge → (point, normal).
+        let mut ends_on_boundary: HashMap<(u32, u32), Vec<Raw>> = HashMap::new();
+        let mut report_trimmed = 0;
+        let boundary_grid = BoundaryGrid::new(positions, &edge_faces, 3.0 * snap);
+        // Boundary loop of each boundary vertex (components of the boundary edges).
+        let mut loop_uf = crate::topology::UnionFind::new(positions.len());
+        for (e, fs) in &edge_faces {
+            if fs.len() == 1 {
+                loop_uf.union(e.0 as usize, e.1 as usize);
+            }
         }
-    }
+        let loop_of: Vec<usize> = (0..positions.len()).map(|v| loop_uf.find(v)).collect();
+        let mut cuts_of_plane: Vec<Vec<usize>> = vec![Vec::new(); planes.len()];
+        for (ci, c) in cuts.iter().enumerate() {
+            cuts_of_plane[c.plane].push(ci);
+        }
+        let axis_name = ["X", "Y", "Z"];
+        for (pi, list) in cuts_of_plane.iter().enumerate() {
+            let mut by_edge: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+            for &ci in list {
+                for e in cuts[ci].edges {
+                    by_edge.entry(e).or_default().push(ci);
+                }
+            }
+            let mut used: HashMap<usize, bool> = list.iter().map(|&c| (c, false)).collect();
+            // Open chains start at a boundary edge (one cut), then closed loops.
+            let mut starts: Vec<(usize, usize)> = Vec::new();
+            for &ci in list {
+                for k in 0..2 {
+                    if by_edge[&cuts[ci].edges[k]].len() == 1 {
+                        starts.push((ci, k));
+                    }
+                }
+            }
+            let closed_starts: Vec<(usize, usize)> = list.iter().map(|&c| (c, 0)).collect();
+            let mut piece = 0;
+            for (ci0, k0) in starts.into_iter().chain(closed_starts) {
+                if used[&ci0] {
+                    continue;
+                }
+                let mut samples = Vec::new();
+                let (mut ci, mut enter) = (ci0, k0);
+                let closed;
+                loop {
+                    *used.get_mut(&ci).unwrap_or(&mut false) = true;
+                    let c = &cuts[ci];
+                    let e_in = c.edges[enter];
+                    let (p, n) = edge_point(e_in, planes[pi]);
+                    samples.push(Raw { p, n, node: false });
+                    let mut xs = crossing_at[ci].clone();
+                    if enter == 0 {
+                        xs.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    } else {
+                        xs.sort_by(|a, b| b.0.total_cmp(&a.0));
+                    }
+                    samples.extend(xs.into_iter().map(|x| x.1));
+                    let e_out = c.edges[1 - enter];
+                    let next = by_edge[&e_out].iter().copied().find(|&o| o != ci);
+                    match next {
+                        Some(o) if o == ci0 => {
+                            closed = true;
+                            break;
+                        }
+                        Some(o) if !used[&o] => {
+                            enter = if cuts[o].edges[0] == e_out { 0 } else { 1 };
+                            ci = o;
+                        }
+                        _ => {
+                            let (p, n) = edge_point(e_out, planes[pi]);
+                            samples.push(Raw { p, n, node: false });
+                            closed = false;
+                            break;
+                        }
+                    }
+                }
+                if !closed {
+                    // Ends on boundary edges meet the boundary loops there. An end that runs along
+                    // the boundary first is cut back to where it leaves it (`trim_along`).
+                    let mut end_edges = [cuts[ci0].edges[k0], cuts[ci].edges[1 - enter]];
+                    if opts.boundary {
+                        for side in 0..2 {
+                            if edge_faces.get(&end_edges[side]).is_none_or(|f| f.len() != 1) {
+                                continue;
+                            }
+                            if side == 1 {
+                                samples.reverse();
+                            }
+                            let same_loop = loop_of[end_edges[side].0 as usize];
+                            if let Some(e) = trim_along(
+                                &mut samples,
+                                &boundary_grid,
+                                3.0 * snap,
+                                positions,
+                                &normals,
+                                &|e: (u32, u32)| loop_of[e.0 as usize] == same_loop,
+                            ) {
+                                end_edges[side] = e;
+                                report_trimmed += 1;
+                            }
+                            if side == 1 {
+                                samples.reverse();
+                            }
+                        }
+                    }
+                    if samples.len() < 2 {
+                        continue;
+                    }
+                    for (e, raw) in [(end_edges[0], samples[0]), (end_edges[1], samples[samples.len() - 1])] {
+                        if edge_faces.get(&e).is_some_and(|f| f.len() == 1) {
+                            ends_on_boundary.entry(e).or_default().push(raw);
+                        }
+                    }
+                }
+                let (axis, lev) = planes[pi];
+                traced.push(Traced {
+                    plane: Some(pi),
+                    samples,
+                    closed,
+                    boundary: false,
+                    name: format!("{}={:.6} #{piece}", axis_name[axis], lev),
+                    cut: false,
+                });
+                piece += 1;
+            }
+        }
+        (traced, ends_on_boundary, unresolved, unresolved_at, crossings, report_trimmed)
+    };
     // Section ends on the boundary are nodes (when the boundary loop is kept).
     let mut boundary_loops = Vec::new();
     if opts.boundary {
@@ -674,7 +719,8 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     }
     let has_boundary = !boundary_loops.is_empty();
     for t in &mut traced {
-        if !t.closed && has_boundary {
+        // Plane sections end on the boundary (principal curves mark their own ends there).
+        if !t.closed && has_boundary && !principal {
             let last = t.samples.len() - 1;
             t.samples[0].node = true;
             t.samples[last].node = true;
@@ -697,6 +743,15 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
             None => Vec::new(),
         })
         .collect();
+    // Sections that turn back within the surface (by more than [`SHARP_TURN_DEG`] about the
+    // normal: a plane that grazes one side of a sharp crease, so that the section runs along the
+    // crease before it crosses it) are cut there: the patches on the two sides of such a
+    // corner fold over in any plane (fandisk).
+    for (t, s) in traced.iter().zip(spots.iter_mut()) {
+        let at = sharp_turns(&t.samples, t.closed, 0.5 * spacing, SHARP_TURN_DEG);
+        report.sharp_turns += at.len();
+        s.extend(at);
+    }
     let ends: Vec<(usize, DVec3, f64)> = traced
         .iter()
         .enumerate()
@@ -731,7 +786,9 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     // count, nor do a cut piece's ends alone if they are not crossings) are left out.
     pieces.retain(|t| {
         let nodes = t.samples.iter().filter(|s| s.node).count();
-        let meets = if t.closed { nodes > 0 } else { nodes > 2 || (t.cut && nodes == 2) };
+        let m = t.samples.len();
+        let inner = t.samples.iter().enumerate().filter(|&(k, s)| s.node && k > 0 && k + 1 < m).count();
+        let meets = if t.closed { nodes > 0 } else { inner > 0 || (t.cut && nodes == 2) };
         if !meets {
             report.dropped_sections += 1;
         }
@@ -788,12 +845,15 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         // shared by both curves, so the ends are found by position. Other ends are cut back
         // to the piece's last crossing.
         // Crossings that a kept section passes through (not where it ends: two pieces ending
-        // on their own crossing would make a corner, not a junction).
+        // on their own crossing would make a corner, not a junction). Principal curves may
+        // end in such corners (at about 90°): their free ends are cut back to their last
+        // crossing, and two curves often end on the same one (cutting both further would
+        // peel the whole network from its free ends).
         let mut on_sections: HashMap<[u64; 3], Vec<usize>> = HashMap::new();
         for (i, t) in pieces.iter().enumerate() {
             let m = t.samples.len();
             for (k, r) in t.samples.iter().enumerate() {
-                if r.node && (t.closed || (k > 0 && k + 1 < m)) {
+                if r.node && (t.closed || (k > 0 && k + 1 < m) || principal) {
                     on_sections.entry(key(r.p)).or_default().push(i);
                 }
             }
@@ -1305,6 +1365,44 @@ fn cut_at_spots(t: Traced, spots: &[DVec3], gap: f64) -> Vec<Traced> {
         .collect()
 }
 
+/// Points of a polyline (`pts`, closed or open) where it turns within the surface (about its
+/// normal) by more than `limit_deg` between the directions to the samples `reach` behind and
+/// ahead; of turns closer than `reach`, the sharpest.
+fn sharp_turns(pts: &[Raw], closed: bool, reach: f64, limit_deg: f64) -> Vec<DVec3> {
+    let m = pts.len();
+    let find = |i: usize, step: isize| -> Option<DVec3> {
+        let mut j = i as isize;
+        for _ in 0..m {
+            j += step;
+            let jj = if closed {
+                j.rem_euclid(m as isize) as usize
+            } else if j < 0 || j >= m as isize {
+                return None;
+            } else {
+                j as usize
+            };
+            if pts[jj].p.distance(pts[i].p) >= reach {
+                return Some(pts[jj].p);
+            }
+        }
+        None
+    };
+    let mut turn = vec![0.0; m];
+    for i in 0..m {
+        let (Some(b), Some(a)) = (find(i, -1), find(i, 1)) else { continue };
+        let n = pts[i].n.normalize_or_zero();
+        let flat = |v: DVec3| v - n * v.dot(n);
+        let (u, v) = (flat(pts[i].p - b), flat(a - pts[i].p));
+        turn[i] = u.cross(v).dot(n).atan2(u.dot(v)).abs().to_degrees();
+    }
+    (0..m)
+        .filter(|&i| {
+            turn[i] > limit_deg && (0..m).all(|j| j == i || !(turn[j] > turn[i] && pts[j].p.distance(pts[i].p) < reach))
+        })
+        .map(|i| pts[i].p)
+        .collect()
+}
+
 /// A closed polyline two of whose non-adjacent edges come within `tol` of each other.
 fn thin_loop(points: &[DVec3], tol: f64) -> bool {
     let m = points.len();
@@ -1370,6 +1468,10 @@ pub fn remove_hairpins(points: &mut Vec<DVec3>, normals: &mut Vec<DVec3>, closed
     }
     cut
 }
+
+/// Turning angle within the surface (degrees, about the normal, over half a sample spacing on
+/// either side) above which a section is cut ([`SampleReport::sharp_turns`]).
+pub const SHARP_TURN_DEG: f64 = 90.0;
 
 /// Turning angle (degrees) above which a polyline sample is a corner (a sharp edge of the
 /// mesh crossed by the section) and is kept through resampling: a chord across it would cut
