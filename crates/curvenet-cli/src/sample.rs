@@ -15,7 +15,8 @@ pub struct SampleArgs {
     /// Output network file (.json, .obj, .net).
     #[arg(short, long)]
     output: PathBuf,
-    /// Section planes per axis, X,Y,Z (a single number for all three).
+    /// Section planes per axis, X,Y,Z (a single number for all three); with --curves principal
+    /// their mean sets the distance between the curves.
     #[arg(long, value_name = "X,Y,Z", default_value = "8,8,8")]
     planes: String,
     /// Distance between samples along the curves (default: 1/200 of the bounding-box diagonal).
@@ -41,8 +42,8 @@ pub struct SampleArgs {
     tilt: f64,
     /// The curves: `planes` (plane sections in three directions) or `principal` (curves along
     /// the principal curvature directions — a fixed axis projected on the surface where it is
-    /// isotropic — crossing at about 90°, the mean box extent over the mean --planes count
-    /// apart; crossings exact on the mesh, free ends cut back to their last crossing).
+    /// isotropic — crossing at about 90°, half the mean box extent over the mean --planes
+    /// count apart; crossings exact on the mesh, free ends cut back to their last crossing).
     #[arg(long, value_name = "KIND", default_value = "planes", value_parser = ["planes", "principal"])]
     curves: String,
 }
