@@ -3,7 +3,7 @@
 
 use clap::Args;
 use curvenet::io::{read_mesh, write_network};
-use curvenet::sampling::{sample_mesh, SampleOptions};
+use curvenet::sampling::{sample_mesh, CurveFamily, SampleOptions};
 use curvenet::Error;
 use std::io::Write;
 use std::path::PathBuf;
@@ -15,7 +15,8 @@ pub struct SampleArgs {
     /// Output network file (.json, .obj, .net).
     #[arg(short, long)]
     output: PathBuf,
-    /// Section planes per axis, X,Y,Z (a single number for all three).
+    /// Section planes per axis, X,Y,Z (a single number for all three); with --curves principal
+    /// their mean sets the distance between the curves.
     #[arg(long, value_name = "X,Y,Z", default_value = "8,8,8")]
     planes: String,
     /// Distance between samples along the curves (default: 1/200 of the bounding-box diagonal).
@@ -39,6 +40,12 @@ pub struct SampleArgs {
     /// (0: axis-aligned; then walls parallel to an axis are cut along coincident curves).
     #[arg(long, value_name = "DEG", default_value_t = SampleOptions::DEFAULT_TILT_DEG)]
     tilt: f64,
+    /// The curves: `planes` (plane sections in three directions) or `principal` (curves along
+    /// the principal curvature directions — a fixed axis projected on the surface where it is
+    /// isotropic — crossing at about 90°, half the mean box extent over the mean --planes
+    /// count apart; crossings exact on the mesh, free ends cut back to their last crossing).
+    #[arg(long, value_name = "KIND", default_value = "planes", value_parser = ["planes", "principal"])]
+    curves: String,
 }
 
 fn parse_planes(s: &str) -> Result<[usize; 3], Error> {
@@ -61,6 +68,7 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
         shared_nodes: !a.no_shared_nodes,
         boundary: !a.no_boundary,
         tilt: a.tilt,
+        curves: if a.curves == "principal" { CurveFamily::Principal } else { CurveFamily::Planes },
     };
     let mesh = read_mesh(&a.mesh)?;
     let (net, r) = sample_mesh(&mesh.positions, &mesh.faces, &opts)?;
@@ -75,15 +83,28 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
     if r.zipped > 0 {
         dropped += &format!("; welded {} boundary vertex pair(s) across cracks", r.zipped);
     }
-    if r.dropped_bad > 0 {
+    if r.cut_bad > 0 {
         dropped += &format!(
-            "; left out {} section(s) still crossing another curve at a shallow angle or twice nearby after {} plane moves",
-            r.dropped_bad,
+            "; cut {} section(s) at bad spots (a shallow crossing, two crossings close together or a near miss left after {} plane moves, an end crowding another one on the boundary, a sharp turn): the stretch between the crossings around each spot left out",
+            r.cut_bad,
             curvenet::sampling::MAX_PLANE_MOVES
         );
     }
+    if r.sharp_turns > 0 {
+        dropped += &format!(
+            "; cut sections at {} place(s) where they turned back by more than {}° within the surface (a plane grazing a sharp crease)",
+            r.sharp_turns,
+            curvenet::sampling::SHARP_TURN_DEG
+        );
+    }
     if r.small_holes > 0 {
-        dropped += &format!("; covered {} hole(s) smaller than 3 sample spacings", r.small_holes);
+        dropped += &format!("; covered {} hole(s) smaller than 3 sample spacings or slit-shaped", r.small_holes);
+    }
+    if r.single_contact_holes > 0 {
+        dropped += &format!(
+            "; covered {} hole(s) that a single section reached (that section's end cut back to its last crossing)",
+            r.single_contact_holes
+        );
     }
     if r.trimmed > 0 {
         dropped += &format!("; cut back {} section end(s) that ran along the boundary", r.trimmed);
@@ -95,9 +116,10 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
         dropped += &format!("; split {} pinch vertex(es) where the mesh boundary touches itself", r.pinches);
     }
     out!(
-        "{}: {} sections, {} boundary loops, {} crossings, {} samples, spacing {:.4e}{dropped}",
+        "{}: {} {}, {} boundary loops, {} crossings, {} samples, spacing {:.4e}{dropped}",
         a.output.display(),
         r.sections,
+        if a.curves == "principal" { "principal curves" } else { "sections" },
         r.boundary_loops,
         r.crossings,
         net.num_samples(),

@@ -425,18 +425,38 @@ fn tessellate_disk(g: &Graph, res: &Resampled, hs: &[HalfEdge], d: f64, index: u
         let pts: Vec<DVec2> = p3.iter().map(|p| DVec2::new((*p - center).dot(e1), (*p - center).dot(e2))).collect();
         (pts, e1, e2)
     };
+    let n3: Vec<DVec3> = ids.iter().map(|&i| res.normals[i as usize]).collect();
+    // Corners inside segments (not at nodes, where the cycle turns from one curve to another).
+    let mut inner = vec![true; ids.len()];
+    let mut k = 0;
+    for h in hs {
+        if k < inner.len() {
+            inner[k] = false;
+        }
+        k += res.segment_vertices[h.segment].len() - 1;
+    }
     let (pts, e1, e2) = project(n);
-    let first = match triangulate(pts, map.clone(), d, &what) {
-        Ok((tris, pos2, map)) => return collect(tris, &pos2, &map, |q| center + q.x * e1 + q.y * e2, &what),
-        Err(e @ Error::Topology(_)) => e,
-        Err(e) => return Err(e),
+    let first = match corner_turned(&p3, &n3, &inner, &pts) {
+        None => match triangulate(pts, map.clone(), d, &what) {
+            Ok((tris, pos2, map)) => return collect(tris, &pos2, &map, |q| center + q.x * e1 + q.y * e2, &what),
+            Err(e @ Error::Topology(_)) => e,
+            Err(e) => return Err(e),
+        },
+        Some(i) => Error::Topology(format!(
+            "{}: the cycle's corner at {} turns the other way in projection than on the surface (a sharp \
+             corner across a crease); the patch cannot be triangulated in a plane",
+            what(),
+            fmt_point(p3[i])
+        )),
     };
     // The projection folds over (the cycle crosses itself or runs clockwise in its plane): a
     // deep or twisted patch ([CG] §3.3 and §5 list it as a limitation). Try the plane of the
     // cycle's vector area, then a convex domain that is always injective.
     if area_n != DVec3::ZERO && area_n.dot(n) < 1.0 - 1e-9 {
         let (pts, e1, e2) = project(area_n);
-        if let Ok((tris, pos2, map)) = triangulate(pts, map.clone(), d, &what) {
+        if let Some(Ok((tris, pos2, map))) =
+            corner_turned(&p3, &n3, &inner, &pts).is_none().then(|| triangulate(pts, map.clone(), d, &what))
+        {
             let mut part = collect(tris, &pos2, &map, |q| center + q.x * e1 + q.y * e2, &what)?;
             part.fold_fallback = true;
             return Ok(part);
@@ -448,6 +468,32 @@ fn tessellate_disk(g: &Graph, res: &Resampled, hs: &[HalfEdge], d: f64, index: u
     let mut part = collect(tris, &pos2, &map, |_| center, &what)?;
     part.fold_fallback = true;
     Ok(part)
+}
+
+/// Turning angle (degrees) of a cycle corner above which [`corner_turned`] compares its sign on
+/// the surface and in projection.
+const CORNER_TURN_DEG: f64 = 20.0;
+
+/// The first corner of the cycle `p3` (normals `n3`) inside a segment (`inner`: a curve's
+/// own corner, not a node where the cycle passes from one curve to the next) that turns by more than
+/// [`CORNER_TURN_DEG`] one way on the surface (about the curve normal there) and the other
+/// way in the planar projection `pts`. Where a curve turns sharply across a crease, the
+/// patches on its two sides have planes far apart, and both may see the corner as convex: both
+/// triangulations then hold the triangle across the corner (an edge in four triangles). The
+/// projection folds over there, as when the cycle crosses itself.
+fn corner_turned(p3: &[DVec3], n3: &[DVec3], inner: &[bool], pts: &[DVec2]) -> Option<usize> {
+    let m = p3.len();
+    let limit = CORNER_TURN_DEG.to_radians();
+    (0..m).filter(|&i| inner[i]).find(|&i| {
+        let (a, c) = ((i + m - 1) % m, (i + 1) % m);
+        let n = n3[i];
+        let flat = |v: DVec3| v - n * v.dot(n);
+        let (u, v) = (flat(p3[i] - p3[a]), flat(p3[c] - p3[i]));
+        let t3 = u.cross(v).dot(n).atan2(u.dot(v));
+        let (q, r) = (pts[i] - pts[a], pts[c] - pts[i]);
+        let t2 = q.perp_dot(r).atan2(q.dot(r));
+        (t3 < -limit && t2 > limit) || (t3 > limit && t2 < -limit)
+    })
 }
 
 /// A convex domain for a cycle whose planar projection folds over: its vertices `p3` placed
@@ -768,4 +814,28 @@ fn merge(res: &Resampled, parts: Vec<Result<PatchMesh>>) -> Result<Mesh> {
         )));
     }
     Ok(mesh)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An L-shaped cycle in z = 0, counter-clockwise about +z: its corner at (1, 1) turns
+    /// right (−90°) on the surface. In its own plane the projection agrees; a projection that
+    /// shows that corner turning left (pushed out to (2, 2)) folds there.
+    #[test]
+    fn a_corner_turning_the_other_way_in_projection_is_a_fold() {
+        let l = [(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)];
+        let p3: Vec<DVec3> = l.iter().map(|&(x, y)| DVec3::new(x, y, 0.0)).collect();
+        let n3 = vec![DVec3::Z; 6];
+        let inner = vec![true; 6];
+        let same: Vec<DVec2> = l.iter().map(|&(x, y)| DVec2::new(x, y)).collect();
+        assert_eq!(corner_turned(&p3, &n3, &inner, &same), None);
+        let mut folded = same.clone();
+        folded[3] = DVec2::new(2.0, 2.0);
+        assert_eq!(corner_turned(&p3, &n3, &inner, &folded), Some(3));
+        // At a node (not inner) the corner is not compared.
+        let at_nodes = vec![true, true, true, false, true, true];
+        assert_eq!(corner_turned(&p3, &n3, &at_nodes, &folded), None);
+    }
 }

@@ -95,10 +95,104 @@ fn real_meshes_when_present() {
         eprintln!("skipped: {} not found", dir.display());
         return;
     }
-    for (name, planes) in [("bumpy-cube.obj", 6), ("fandisk.off", 6), ("beetle.off", 8)] {
+    // The beetle at 6 and 10 planes: issue 5's failures (a crossing snapped past an open
+    // curve's end, a shallow meeting read as two nodes, holes reached by one section).
+    for (name, planes) in
+        [("bumpy-cube.obj", 6), ("fandisk.off", 6), ("beetle.off", 6), ("beetle.off", 8), ("beetle.off", 10)]
+    {
         let m = curvenet::io::read_mesh(&dir.join(name)).unwrap();
-        let (rel, _) = sample_and_measure(&m.positions, &m.faces, planes, 10000);
-        eprintln!("{name}: RMS {:.3}% of the diagonal", 100.0 * rel);
-        assert!(rel <= 0.005, "{name}: RMS {:.3}% of the diagonal", 100.0 * rel);
+        let (rel, s) = sample_and_measure(&m.positions, &m.faces, planes, 10000);
+        eprintln!("{name} at {planes} planes: RMS {:.3}% of the diagonal", 100.0 * rel);
+        assert!(rel <= 0.005, "{name} at {planes} planes: RMS {:.3}% of the diagonal", 100.0 * rel);
+        assert_eq!(s.stats.components, 1, "{name} at {planes} planes");
     }
+}
+
+/// A torus (R, r) with `n × m` quads split in two, counter-clockwise seen from outside.
+fn torus_mesh(big: f64, small: f64, n: usize, m: usize) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let mut p = Vec::with_capacity(n * m);
+    for i in 0..n {
+        let u = 2.0 * PI * i as f64 / n as f64;
+        for j in 0..m {
+            let v = 2.0 * PI * j as f64 / m as f64;
+            p.push(DVec3::new((big + small * v.cos()) * u.cos(), (big + small * v.cos()) * u.sin(), small * v.sin()));
+        }
+    }
+    let at = |i: usize, j: usize| ((i % n) * m + j % m) as u32;
+    let mut f = Vec::with_capacity(2 * n * m);
+    for i in 0..n {
+        for j in 0..m {
+            f.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            f.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    (p, f)
+}
+
+/// `curvenet sample --curves principal`: curves along the principal directions (meridians and
+/// parallels on a torus; a fixed axis where the sphere is isotropic), crossings between
+/// samples, 1% noise, surfaced within half a percent of the diagonal.
+#[test]
+fn principal_curves_on_a_torus_and_a_sphere_are_surfaced_within_half_a_percent() {
+    use curvenet::sampling::CurveFamily;
+    for (name, (p, f)) in [("torus", torus_mesh(4.0, 2.0, 120, 60)), ("sphere", sphere_mesh(50, |_, _| 0.0, None))] {
+        let opts = SampleOptions {
+            planes: [6; 3],
+            shared_nodes: false,
+            noise: 0.01,
+            curves: CurveFamily::Principal,
+            ..Default::default()
+        };
+        let (net, report) = sample_mesh(&p, &f, &opts).expect("sampling");
+        assert!(report.sections >= 8 && report.crossings >= 16, "{name}: {report:?}");
+        let s = surface(&net, &Options { vertices: Some(6000), ..Default::default() }).expect("surfacing");
+        let e = evaluate(
+            &s.mesh.positions,
+            &s.mesh.faces,
+            Some(&s.normals),
+            &s.curve_flags,
+            Reference::Mesh { positions: &p, faces: &f },
+            None,
+        );
+        let diag = Aabb::of(f.iter().flatten().map(|&v| p[v as usize])).diagonal();
+        let rel = e.distance.rms / diag;
+        eprintln!(
+            "{name}: {} curves, {} crossings, RMS {:.4}% of the diagonal",
+            report.sections,
+            report.crossings,
+            100.0 * rel
+        );
+        assert!(rel <= 0.005, "{name}: RMS {:.3}% of the diagonal", 100.0 * rel);
+        assert_eq!(s.stats.components, 1);
+    }
+}
+
+/// On a torus the principal directions are the meridians and the parallels: the principal
+/// curves follow them (away from their cut ends).
+#[test]
+fn principal_curves_on_a_torus_are_meridians_and_parallels() {
+    use curvenet::sampling::CurveFamily;
+    let (p, f) = torus_mesh(4.0, 2.0, 120, 60);
+    let opts = SampleOptions { planes: [5; 3], curves: CurveFamily::Principal, ..Default::default() };
+    let (net, _) = sample_mesh(&p, &f, &opts).expect("sampling");
+    let (mut off, mut total) = (0usize, 0usize);
+    for c in &net.curves {
+        for w in c.points.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let m = 0.5 * (a + b);
+            let t = (b - a).normalize();
+            // Parallel direction: around the z axis; meridian: in the plane through the axis.
+            let along_parallel = DVec3::new(-m.y, m.x, 0.0).normalize();
+            let cos = t.dot(along_parallel).abs();
+            let cos_meridian = (1.0 - cos * cos).max(0.0).sqrt();
+            total += 1;
+            if cos.max(cos_meridian) < 10f64.to_radians().cos() {
+                off += 1;
+            }
+        }
+    }
+    assert!(
+        (off as f64) < 0.02 * total as f64,
+        "{off} of {total} curve edges more than 10° off the principal directions"
+    );
 }

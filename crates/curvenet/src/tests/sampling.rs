@@ -138,3 +138,40 @@ fn bad_meshes_and_options_are_errors() {
     let o = SampleOptions { planes: [3, 0, 0], ..Default::default() };
     assert!(matches!(sample_mesh(&p, &f, &o), Err(Error::Topology(_))));
 }
+
+/// Issue 5: a section in a bad spot loses only the stretch around it, up to the nearest node
+/// (crossing or boundary end) on either side, which end the pieces left.
+#[test]
+fn a_section_is_cut_at_a_bad_spot_between_the_nodes_around_it() {
+    // Samples at x = 0..10; nodes at 0 (boundary end), 3, 6 and 10 (boundary end).
+    let samples: Vec<Raw> = (0..=10)
+        .map(|i| Raw { p: DVec3::new(i as f64, 0.0, 0.0), n: DVec3::Z, node: matches!(i, 0 | 3 | 6 | 10) })
+        .collect();
+    let t = |closed| Traced {
+        plane: Some(0),
+        samples: samples.clone(),
+        closed,
+        boundary: false,
+        name: "s".into(),
+        cut: false,
+    };
+    let xs = |t: &Traced| t.samples.iter().map(|r| r.p.x).collect::<Vec<_>>();
+    // A spot near x = 4.4 (within 0.5 of sample 4 only): samples 4 and 5 go, the pieces end at
+    // the crossings at 3 and 6.
+    let pieces = cut_at_spots(t(false), &[DVec3::new(4.4, 0.1, 0.0)], 0.5);
+    assert_eq!(
+        pieces.iter().map(xs).collect::<Vec<_>>(),
+        vec![vec![0.0, 1.0, 2.0, 3.0], vec![6.0, 7.0, 8.0, 9.0, 10.0]]
+    );
+    assert!(pieces.iter().all(|p| p.cut && !p.closed && p.samples[0].node && p.samples[p.samples.len() - 1].node));
+    // A spot on the crossing at 6 itself: it goes too, and with it the stretch up to the end
+    // at 10 (a single sample is no piece); the piece left ends at 3.
+    let pieces = cut_at_spots(t(false), &[DVec3::new(6.0, 0.0, 0.0)], 0.5);
+    assert_eq!(pieces.iter().map(xs).collect::<Vec<_>>(), vec![vec![0.0, 1.0, 2.0, 3.0]]);
+    // An end cut back (gap 0): up to the first crossing.
+    let pieces = cut_at_spots(t(false), &[DVec3::new(10.0, 0.0, 0.0)], 0.0);
+    assert_eq!(pieces.iter().map(xs).collect::<Vec<_>>(), vec![vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0]]);
+    // A closed section opens at the spot: one piece from 6 round to 3.
+    let pieces = cut_at_spots(t(true), &[DVec3::new(4.4, 0.1, 0.0)], 0.5);
+    assert_eq!(pieces.iter().map(xs).collect::<Vec<_>>(), vec![vec![6.0, 7.0, 8.0, 9.0, 10.0, 0.0, 1.0, 2.0, 3.0]]);
+}

@@ -379,10 +379,13 @@ pub fn find_patches_or_slits(
 }
 
 /// Patches of an open network: [`find_patches_or_slits`], leaving out the slits (segments with
-/// the same patch on both sides) and then whatever dangles ([`super::open::trim_dangling`]),
-/// until the rest bounds patches. Each curve left out or shortened is named in a warning.
+/// the same patch on both sides), then whatever dangles ([`super::open::trim_dangling`]) and the
+/// boundary loops that no curve reaches any more ([`super::open::cover_detached_holes`]: a hole
+/// that a single curve reached is covered), until the rest bounds patches. Each curve left out
+/// or shortened is named in a warning.
 pub fn find_patches_open(g: &mut Graph, splines: &[CurveSpline]) -> Result<(Vec<Patch>, Vec<crate::error::Warning>)> {
     let mut warnings = Vec::new();
+    let attached = super::open::attached_boundary(g);
     for _ in 0..64 {
         match find_patches_or_slits(g, splines)? {
             Ok(patches) => return Ok((patches, warnings)),
@@ -404,6 +407,7 @@ pub fn find_patches_open(g: &mut Graph, splines: &[CurveSpline]) -> Result<(Vec<
                 }
                 super::open::remove_segments(g, &slits);
                 warnings.extend(super::open::trim_dangling(g)?);
+                warnings.extend(super::open::cover_detached_holes(g, &attached));
             }
         }
     }

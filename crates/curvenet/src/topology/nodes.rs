@@ -252,6 +252,31 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
             }
         }
     }
+    // Two hits of the same two curves within a few tolerances along both curves are one meeting
+    // (curves that meet at a shallow angle stay within the tolerance over a stretch longer than
+    // the clustering distance; a curve that ends on another one at a shallow angle touches it
+    // twice): one node, not two nodes joined by two tiny segments of the two curves.
+    let mut by_pair: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+    for (k, hit) in hits.iter().enumerate() {
+        if hit.a.curve != hit.b.curve {
+            by_pair.entry((hit.a.curve, hit.b.curve)).or_default().push(k);
+        }
+    }
+    let mut pair_keys: Vec<&(usize, usize)> = by_pair.keys().collect();
+    pair_keys.sort_unstable();
+    for key in pair_keys {
+        let list = &by_pair[key];
+        for (i, &k) in list.iter().enumerate() {
+            for &j in &list[i + 1..] {
+                let (x, y) = (&hits[k], &hits[j]);
+                if along(key.0, arc_at(x.a), arc_at(y.a)) <= SAME_MEETING * snap
+                    && along(key.1, arc_at(x.b), arc_at(y.b)) <= SAME_MEETING * snap
+                {
+                    uf.union(k, j);
+                }
+            }
+        }
+    }
     let mut clusters: Vec<Vec<usize>> = Vec::new();
     let mut root_index: HashMap<usize, usize> = HashMap::new();
     for k in 0..hits.len() {
@@ -295,7 +320,10 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
         let mut i = 0;
         while i < locs.len() {
             let mut j = i + 1;
-            while j < locs.len() && locs[j].0 == locs[i].0 && along(locs[i].0, locs[j].1, locs[j - 1].1) <= 4.0 * snap {
+            while j < locs.len()
+                && locs[j].0 == locs[i].0
+                && along(locs[i].0, locs[j].1, locs[j - 1].1) <= SAME_MEETING * snap
+            {
                 j += 1;
             }
             let c = locs[i].0;
@@ -317,7 +345,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
         // A closed curve's run may straddle its seam (arc 0 / length): merge first and last.
         let mut merged: Vec<(usize, f64, Loc)> = Vec::new();
         for p in passages {
-            if !merged.iter().any(|q| q.0 == p.0 && along(p.0, p.1, q.1) <= 4.0 * snap) {
+            if !merged.iter().any(|q| q.0 == p.0 && along(p.0, p.1, q.1) <= SAME_MEETING * snap) {
                 merged.push(p);
             }
         }
@@ -431,8 +459,10 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
         // Sample at which each node lands: Err(insert position along edge) or Ok(existing sample).
         let mut snapped: Vec<Option<usize>> = vec![None; n];
         let mut inserts: Vec<(usize, f64, usize)> = Vec::new(); // (edge, arc, node)
+        let wrap = |a: f64| if curve.closed { a.rem_euclid(total) } else { a.clamp(0.0, total) };
+        let wrapped: Vec<f64> = list.iter().map(|&(a, _)| wrap(a)).collect();
         for &(a, node) in list.iter() {
-            let a = if curve.closed { a.rem_euclid(total) } else { a.clamp(0.0, total) };
+            let a = wrap(a);
             let e = (arc.partition_point(|&x| x <= a).max(1) - 1).min(arc.len() - 2);
             let len = arc[e + 1] - arc[e];
             let (d0, d1) = (a - arc[e], arc[e + 1] - a);
@@ -442,7 +472,14 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
             let s1_valid = curve.closed || e + 1 < n;
             if d0 <= lim && snapped[s0].is_none() && d0 <= d1 {
                 snapped[s0] = Some(node);
-            } else if d1 <= lim && s1_valid && snapped[s1].is_none() {
+            } else if d1 <= lim
+                && s1_valid
+                && snapped[s1].is_none()
+                // A node further along the same edge keeps the order: it takes sample e + 1 (or
+                // is inserted before it), this one is inserted before it. Snapping this one
+                // forward would put the other one behind it and fold the curve back.
+                && !wrapped.iter().any(|&b| b > a && b <= arc[e + 1])
+            {
                 snapped[s1] = Some(node);
             } else if d0 <= lim && snapped[s0].is_none() {
                 snapped[s0] = Some(node);
@@ -520,6 +557,11 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
     }
     Ok((Graph { nodes, curves: split, segments, labels }, warnings))
 }
+
+/// Hits of the same two curves closer than this (in snapping tolerances, along both curves)
+/// form one node; also the largest gap (along a curve) between the hits of one passage of a
+/// curve through a node.
+const SAME_MEETING: f64 = 4.0;
 
 /// How far from a node (in snapping tolerances) two curves must have separated for the node to
 /// count as a crossing rather than an overlap: crossings at angles below asin(1/20) ≈ 3° are

@@ -15,6 +15,84 @@ use crate::geom::fmt_point;
 ///
 /// Errors ([`Error::Topology`]): nothing is left (no two curves of the network meet).
 pub fn trim_dangling(g: &mut Graph) -> Result<Vec<Warning>> {
+    let attached = attached_boundary(g);
+    let mut warnings = trim_dangling_only(g)?;
+    warnings.extend(cover_detached_holes(g, &attached));
+    Ok(warnings)
+}
+
+/// Per curve of `g`: a boundary curve that shares a connected part of the network with
+/// interior (non-boundary) segments.
+pub fn attached_boundary(g: &Graph) -> Vec<bool> {
+    let comp = g.node_components();
+    let mut has_interior = vec![false; g.nodes.len()];
+    for seg in &g.segments {
+        if !seg.boundary {
+            has_interior[comp[seg.start]] = true;
+        }
+    }
+    let mut attached = vec![false; g.curves.len()];
+    for seg in &g.segments {
+        if seg.boundary && has_interior[comp[seg.start]] {
+            attached[seg.curve] = true;
+        }
+    }
+    attached
+}
+
+/// Boundary loops that were `attached` to interior curves ([`attached_boundary`]) but are no
+/// longer, because the curves that reached them were left out (dangling, or slits: a hole that
+/// a single curve reaches): such a loop bounds a hole inside a patch of the rest of the
+/// network, which the patches (disks) cannot leave open. Alone it would be surfaced as a disk
+/// of its own over that patch (two sheets). It is left out, so that the hole is covered, with a
+/// warning naming it — unless no interior curve is left at all (then it is the network's only
+/// border and bounds a disk). Returns one warning per loop left out.
+pub fn cover_detached_holes(g: &mut Graph, attached: &[bool]) -> Vec<Warning> {
+    let comp = g.node_components();
+    let mut has_interior = vec![false; g.nodes.len()];
+    for seg in &g.segments {
+        if !seg.boundary {
+            has_interior[comp[seg.start]] = true;
+        }
+    }
+    if !has_interior.iter().any(|&x| x) {
+        return Vec::new();
+    }
+    let gone: Vec<usize> = (0..g.segments.len())
+        .filter(|&s| {
+            let seg = &g.segments[s];
+            seg.boundary && !has_interior[comp[seg.start]] && attached.get(seg.curve).copied().unwrap_or(false)
+        })
+        .collect();
+    if gone.is_empty() {
+        return Vec::new();
+    }
+    let mut curves: Vec<usize> = gone.iter().map(|&s| g.segments[s].curve).collect();
+    curves.sort_unstable();
+    curves.dedup();
+    let warnings = curves
+        .iter()
+        .map(|&c| {
+            let at = g
+                .segments
+                .iter()
+                .find(|seg| seg.curve == c)
+                .map_or(crate::geom::DVec3::ZERO, |seg| g.nodes[seg.start].position);
+            Warning(format!(
+                "{} (boundary curve) is no longer reached by other curves (the curves that reached it were left out); \
+                 the hole it bounds near {} cannot be cut out of the patch around it and was covered (the boundary \
+                 curve was left out of the surface)",
+                g.labels[c],
+                fmt_point(at)
+            ))
+        })
+        .collect();
+    remove_segments(g, &gone);
+    warnings
+}
+
+/// [`trim_dangling`] without the holes it cuts off ([`cover_detached_holes`]).
+fn trim_dangling_only(g: &mut Graph) -> Result<Vec<Warning>> {
     let ns = g.segments.len();
     let mut valence = vec![0usize; g.nodes.len()];
     let mut incident: Vec<Vec<usize>> = vec![Vec::new(); g.nodes.len()];

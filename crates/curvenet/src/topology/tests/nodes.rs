@@ -77,3 +77,66 @@ fn open_curve_ends_are_nodes() {
     assert_eq!(g.nodes.len(), 2);
     assert_eq!(g.segments, vec![Segment { curve: 0, first: 0, last: 2, start: 0, end: 1, boundary: false }]);
 }
+
+/// Issue 5 (beetle, 10 planes): an open curve crosses another one just before its end, close
+/// enough to its last sample that the crossing snaps to it, and ends more than the clustering
+/// distance beyond. The crossing used to take the last sample and the end node was inserted
+/// before it, so that the curve folded back on itself at its end (a hairpin the cycle tracing
+/// reads as a slit).
+#[test]
+fn a_crossing_near_an_open_curve_end_keeps_the_order_of_the_nodes() {
+    let stick = Curve {
+        name: Some("stick".into()),
+        points: vec![DVec3::new(0.0, 1.0, 0.0), DVec3::new(0.0, 0.5, 0.0), DVec3::new(0.0, -0.03, 0.0)],
+        normals: vec![DVec3::Z; 3],
+        closed: false,
+        boundary: false,
+    };
+    let bar = Curve {
+        name: Some("bar".into()),
+        points: (0..=20).map(|i| DVec3::new(-1.0 + 0.1 * i as f64 + 0.013, 0.0, 0.0)).collect(),
+        normals: vec![DVec3::Z; 21],
+        closed: false,
+        boundary: false,
+    };
+    let net = Network { curves: vec![stick, bar], snap: Some(0.01) };
+    let (g, _) = find_nodes(&net, 0.01).unwrap();
+    // Along the stick, y decreases: the crossing (y = 0) comes before the end (y = -0.03).
+    let y: Vec<f64> = g.curves[0].points.iter().map(|p| p.y).collect();
+    assert!(y.windows(2).all(|w| w[1] < w[0]), "the stick folds back: {y:?}");
+    let ends: Vec<DVec3> = g.curves[0].nodes.iter().map(|&(_, v)| g.nodes[v].position).collect();
+    assert_eq!(ends.len(), 3, "{ends:?}");
+    assert!(ends[1].distance(DVec3::ZERO) < 1e-9 && ends[2].distance(DVec3::new(0.0, -0.03, 0.0)) < 1e-9, "{ends:?}");
+}
+
+/// Issue 5 (beetle, 6 planes): a curve that ends on another one at a shallow angle touches it
+/// at two points a little more than the clustering distance (2 tolerances) apart: where it
+/// passes over a sample of the other curve and at its end. The two contacts are one meeting:
+/// one node, not two nodes joined by tiny segments of both curves (a sliver that the cycle
+/// tracing put on the wrong side of the boundary).
+#[test]
+fn two_contacts_of_a_shallow_meeting_are_one_node() {
+    let snap = 0.01;
+    // The bar: samples every 8 tolerances, one at x = 0.
+    let bar = Curve {
+        name: Some("bar".into()),
+        points: (0..=20).map(|i| DVec3::new(0.08 * (i as f64 - 10.0), 0.0, 0.0)).collect(),
+        normals: vec![DVec3::Z; 21],
+        closed: false,
+        boundary: false,
+    };
+    // The stick comes down at 15°, passes 0.8 tolerances above the bar's sample at x = 0 and
+    // ends at x = 0.025, 0.13 tolerances above the bar.
+    let u = DVec3::new(15f64.to_radians().cos(), -15f64.to_radians().sin(), 0.0);
+    let end = DVec3::new(0.025, 0.008 - 0.025 * 15f64.to_radians().tan(), 0.0);
+    let points: Vec<DVec3> = (0..8).rev().map(|k| end - u * (0.08 * k as f64)).collect();
+    let n = points.len();
+    let stick =
+        Curve { name: Some("stick".into()), points, normals: vec![DVec3::Z; n], closed: false, boundary: false };
+    let net = Network { curves: vec![stick, bar], snap: Some(snap) };
+    let (g, _) = find_nodes(&net, snap).unwrap();
+    // Nodes on the bar other than its two ends: one.
+    let inner: Vec<DVec3> =
+        g.curves[1].nodes.iter().map(|&(_, v)| g.nodes[v].position).filter(|p| p.x.abs() < 0.5).collect();
+    assert_eq!(inner.len(), 1, "nodes on the bar: {inner:?}");
+}
