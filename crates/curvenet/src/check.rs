@@ -136,6 +136,31 @@ pub fn check_surface(surface: &Surface, network: &Network, snap: f64, constraint
     problems
 }
 
+/// The property the network-reader fuzzers (`fuzz/fuzz_targets/read_{json,obj,net}.rs`)
+/// check on arbitrary bytes read as `format`: the reader returns (never panics); an error has
+/// a message; a network that validates has finite samples and unit normals. `Err` names the
+/// violation (the fuzz target turns it into a crash).
+pub fn check_network_reader(data: &[u8], format: crate::io::NetworkFormat) -> Result<(), String> {
+    // read_network rejects non-UTF-8 before parsing (tested in the catalogue).
+    let Ok(text) = std::str::from_utf8(data) else { return Ok(()) };
+    match crate::io::parse_network(text, format, "fuzz") {
+        Ok(net) => {
+            let Ok((clean, _)) = net.validated() else { return Ok(()) };
+            for (ci, c) in clean.curves.iter().enumerate() {
+                if let Some(si) = c.points.iter().position(|p| !p.is_finite()) {
+                    return Err(format!("validated curve {ci}, sample {si}: position not finite"));
+                }
+                if let Some(si) = c.normals.iter().position(|n| !((n.length() - 1.0).abs() < 1e-9)) {
+                    return Err(format!("validated curve {ci}, sample {si}: normal not of unit length"));
+                }
+            }
+            Ok(())
+        }
+        Err(e) if e.to_string().is_empty() => Err("an error without a message".into()),
+        Err(_) => Ok(()),
+    }
+}
+
 /// Decodes arbitrary bytes into a small network and options for the pipeline fuzzer
 /// (`fuzz/fuzz_targets/pipeline.rs`) and its regression tests: one of the bundled networks
 /// (sphere, cube, saddle, cylinder) subsampled to a few samples per curve, scaled, moved and
