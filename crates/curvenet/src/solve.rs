@@ -346,20 +346,22 @@ mod kernels {
         backward_generic::<true>(block, w, h, k, z)
     }
 
-    /// Asks for the first cache lines of the columns `j..j + 4` from row `j` on.
+    /// Asks for the cache lines of the columns `j..j + 4` from row `j` on: the next group of
+    /// columns arrives while the current one is used (one prefetch per line; the columns of a
+    /// supernode are short, so the hardware's stream detection alone lags behind).
     #[inline(always)]
-    fn prefetch(block: &[f64], h: usize, j: usize, w: usize) {
+    pub(super) fn prefetch(block: &[f64], h: usize, j: usize, w: usize) {
         #[cfg(target_arch = "x86_64")]
         for q in j..(j + 4).min(w) {
-            let at = q * h + j;
-            if at < block.len() {
+            let (from, to) = (q * h + j, ((q + 1) * h).min(block.len()));
+            let mut at = from;
+            while at < to {
                 // SAFETY: a prefetch of an address inside `block` (no access is made).
                 unsafe {
                     use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-                    let p = block.as_ptr().add(at) as *const i8;
-                    _mm_prefetch::<_MM_HINT_T0>(p);
-                    _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64));
+                    _mm_prefetch::<_MM_HINT_T0>(block.as_ptr().add(at) as *const i8);
                 }
+                at += 8;
             }
         }
         #[cfg(not(target_arch = "x86_64"))]
@@ -372,16 +374,19 @@ mod kernels {
         for j0 in (0..w).step_by(4) {
             let jb = (w - j0).min(4);
             prefetch(block, h, j0 + 4, w);
-            for zc in z.chunks_exact_mut(h).take(k) {
-                // The triangle: z_j /= T_jj, then z_i -= T_ij z_j inside it.
-                for j in j0..j0 + jb {
-                    let col = column(j, 0);
+            // The triangle: z_j /= T_jj, then z_i -= T_ij z_j inside it; the right-hand sides
+            // side by side, so that their divisions overlap.
+            for j in j0..j0 + jb {
+                let col = column(j, 0);
+                for zc in z.chunks_exact_mut(h).take(k) {
                     let v = zc[j] / col[j];
                     zc[j] = v;
                     for i in j + 1..j0 + jb {
                         zc[i] -= col[i] * v;
                     }
                 }
+            }
+            for zc in z.chunks_exact_mut(h).take(k) {
                 // Every row below: z_i -= Σ_q L_iq z_q.
                 if jb == 4 {
                     let a = [-zc[j0], -zc[j0 + 1], -zc[j0 + 2], -zc[j0 + 3]];
@@ -424,9 +429,12 @@ mod kernels {
                         head[j] -= dot(column(j, j0 + jb), below);
                     }
                 }
-                // The triangle, from its last row up: z_j = (z_j − Σ_{i>j} T_ij z_i) / T_jj.
-                for j in (j0..j0 + jb).rev() {
-                    let col = column(j, 0);
+            }
+            // The triangle, from its last row up: z_j = (z_j − Σ_{i>j} T_ij z_i) / T_jj; the
+            // right-hand sides side by side (their divisions overlap).
+            for j in (j0..j0 + jb).rev() {
+                let col = column(j, 0);
+                for head in z.chunks_exact_mut(h).take(k) {
                     let mut s = head[j];
                     for i in j + 1..j0 + jb {
                         s -= col[i] * head[i];
@@ -697,6 +705,7 @@ mod tree_solve {
         let (w, m, k) = (sym.supernode_end()[s] as usize - start, pattern.len(), x.k);
         let h = w + m;
         gather_own(z, x, start, w, h);
+        prefetch_first(sym, values, s + 1, false);
         super::kernels::forward(block, w, h, k, z);
         put_back(z, x, start, w, h);
         // z's pattern rows hold −B x: added to the rows they belong to.
@@ -731,8 +740,23 @@ mod tree_solve {
                 z[c * h + w + idx] = v;
             }
         }
+        if s > 0 {
+            prefetch_first(sym, values, s - 1, true);
+        }
         super::kernels::backward(block, w, h, k, z);
         put_back(z, x, start, w, h);
+    }
+
+    /// Prefetches the columns supernode `s` uses first: its first four (forward) or its last
+    /// group of four (`last`, backward).
+    fn prefetch_first(sym: &SymbolicSupernodalCholesky<u32>, values: &[f64], s: usize, last: bool) {
+        if s >= sym.n_supernodes() {
+            return;
+        }
+        let (start, pattern, block) = block(sym, values, s);
+        let w = sym.supernode_end()[s] as usize - start;
+        let j = if last { w.saturating_sub(1) / 4 * 4 } else { 0 };
+        super::kernels::prefetch(block, w + pattern.len(), j, w);
     }
 
     /// `z` (column-major `h × k`) ← the rows `start..start + w` of `x` on top, zeros below.

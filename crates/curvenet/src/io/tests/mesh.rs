@@ -32,6 +32,30 @@ fn round_trips() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The text formats print the shortest decimal that reads back to the same bits, with an
+/// exponent where one is shorter (`1e+21`, `5e-324`): every value survives a round trip.
+#[test]
+fn text_formats_keep_every_bit() {
+    let dir = std::env::temp_dir().join(format!("curvenet-mesh-bits-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut m = tetra();
+    m.positions = vec![
+        DVec3::new(0.1 + 0.2, -1.0 / 3.0, 1e21),
+        DVec3::new(-0.0, 5e-324, -2.2250738585072014e-308),
+        DVec3::new(f64::MAX / 3.0, 123456789.0, -1.2345678901234567e-5),
+        DVec3::new(1e-7, 0.5, 9007199254740993.0),
+    ];
+    for ext in ["obj", "off"] {
+        let p = dir.join(format!("bits.{ext}"));
+        write_mesh(&p, m.as_data()).unwrap();
+        let back = read_mesh(&p).unwrap();
+        for (a, b) in back.positions.iter().zip(&m.positions) {
+            assert_eq!(a.to_array().map(f64::to_bits), b.to_array().map(f64::to_bits), "{ext}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn unknown_extension_is_a_usage_error() {
     let e = write_mesh(Path::new("x.stl"), tetra().as_data()).unwrap_err();
