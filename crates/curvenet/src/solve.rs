@@ -306,11 +306,13 @@ mod tests;
 /// too: the supernode's own rows, then its pattern's.
 ///
 /// Both passes sweep the block four columns at a time, each column from the diagonal down in
-/// memory order (four sequential streams, the next four columns prefetched): the forward
-/// pass solves the 4 × 4 triangle and subtracts the four columns times the solved values
-/// from every row below (own rows and pattern rows in one sweep); the backward pass takes
-/// the four dot products with the rows below, then solves the triangle. Each value of `L` is
-/// read once per pass. The loops use AVX2 when the processor has it (checked at run time);
+/// memory order (four sequential streams; the next four columns, and the next supernode's
+/// first four, prefetched whole: without it the solves wait on memory, not on arithmetic): the
+/// forward pass solves the 4 × 4 triangle and subtracts the four columns times the solved
+/// values from every row below (own rows and pattern rows in one sweep); the backward pass
+/// takes the four dot products with the rows below, then solves the triangle. The triangles
+/// of all right-hand sides are solved side by side (their divisions overlap). Each value of
+/// `L` is read from memory once per pass. The loops use AVX2 when the processor has it (checked at run time);
 /// no fused multiply–add, and the same order of operations on both paths: the same bits.
 mod kernels {
     /// Forward substitution: `z[..w] ← T⁻¹ z[..w]`, `z[w..] −= B z[..w]` for the block
