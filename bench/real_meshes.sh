@@ -1,11 +1,10 @@
 #!/usr/bin/env bash
-# Networks sampled from the real meshes of ../shared/data (plane sections, crossings between
+# Networks sampled from the real meshes of data/meshes (plane sections, crossings between
 # samples, 1% noise), surfaced, and measured against the source mesh (docs/robustness.md).
 # Usage: bench/real_meshes.sh [PLANES] [EXTRA SAMPLE FLAGS...]   (default 8,8,8)
 set -uo pipefail
 cd "$(dirname "$0")/.."
-DATA=${DATA:-../shared/data}
-[ -d "$DATA" ] || DATA=/work/shared/data
+DATA=${DATA:-data/meshes}
 PLANES=${1:-8,8,8}
 shift || true
 BIN=target/release/curvenet

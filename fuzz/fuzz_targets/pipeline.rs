@@ -1,8 +1,8 @@
-//! The whole pipeline on small generated networks (`curvenet::check::fuzz_case`): a run either
-//! fails with an error message or returns a surface that passes `curvenet::check::check_surface`
+//! The whole pipeline on small generated networks (`curvenet::metrics::check::fuzz_case`): a run either
+//! fails with an error message or returns a surface that passes `curvenet::metrics::check::check_surface`
 //! (finite, manifold, consistently oriented, no hole, samples on the surface in hard mode).
 #![no_main]
-use curvenet::check::{check_surface, fuzz_case, Constraints};
+use curvenet::metrics::check::{check_surface, fuzz_case, Constraints};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

@@ -172,8 +172,8 @@ fn read_network(path: &str) -> PyResult<PyNetwork> {
 
 #[pyfunction]
 fn example(name: &str) -> PyResult<PyNetwork> {
-    let names: Vec<&str> = curvenet::examples::EXAMPLES.iter().map(|e| e.0).collect();
-    match curvenet::examples::example(name) {
+    let names: Vec<&str> = curvenet::network::examples::EXAMPLES.iter().map(|e| e.0).collect();
+    match curvenet::network::examples::example(name) {
         Some(inner) => Ok(PyNetwork { inner }),
         None => Err(usage(format!("unknown example \"{name}\"; the examples are: {}", names.join(", ")))),
     }
@@ -181,7 +181,7 @@ fn example(name: &str) -> PyResult<PyNetwork> {
 
 #[pyfunction]
 fn examples() -> Vec<(&'static str, &'static str)> {
-    curvenet::examples::EXAMPLES.to_vec()
+    curvenet::network::examples::EXAMPLES.to_vec()
 }
 
 /// The library options: `preset` ("default", "fast", "paper"), then every option given
@@ -340,7 +340,7 @@ impl PySurfacer {
     }
 }
 
-/// `Δᵏ X = 0` on the mesh with `X[b] = bc` (`curvenet::harmonic::harmonic`).
+/// `Δᵏ X = 0` on the mesh with `X[b] = bc` (`curvenet::methods::harmonic::harmonic`).
 #[pyfunction]
 fn _harmonic<'py>(
     py: Python<'py>,
@@ -366,7 +366,7 @@ fn _harmonic<'py>(
     }
     let columns = bcv.ncols();
     let values: Vec<f64> = bcv.iter().copied().collect();
-    let x = py.detach(|| curvenet::harmonic::harmonic(&positions, &faces, &fixed, &values, columns, k)).map_err(err)?;
+    let x = py.detach(|| curvenet::methods::harmonic::harmonic(&positions, &faces, &fixed, &values, columns, k)).map_err(err)?;
     let out = Array2::from_shape_vec((positions.len(), columns), x).map_err(|e| usage(e.to_string()))?;
     Ok(out.into_pyarray(py))
 }

@@ -5,7 +5,8 @@
 
 use clap::Args;
 use curvenet::io::write_network;
-use curvenet::{examples, Error};
+use curvenet::network::examples;
+use curvenet::{Error};
 use std::fmt::Write as _;
 use std::io::Write;
 use std::path::PathBuf;

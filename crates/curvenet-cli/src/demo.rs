@@ -5,7 +5,8 @@ use clap::Args;
 use curvenet::io::write_network;
 use curvenet::metrics::{distance_to_truth, Truth};
 use curvenet::render::{render, Coloring, RenderOptions, Scene};
-use curvenet::{examples, Error, Options};
+use curvenet::network::examples;
+use curvenet::{Error, Options};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 

@@ -2,7 +2,8 @@
 
 use clap::Args;
 use curvenet::io::write_network;
-use curvenet::{examples, Error};
+use curvenet::network::examples;
+use curvenet::{Error};
 use std::io::Write;
 use std::path::PathBuf;
 

@@ -3,7 +3,7 @@
 //! cylinder with three normal sets, and the deviation of the propagated normals.
 
 use clap::Args;
-use curvenet::examples::example;
+use curvenet::network::examples::example;
 use curvenet::render::{render_panels, Coloring, Panel, Scene, View};
 use curvenet::{Error, Method, Network, Options, Patching};
 use std::io::Write;
@@ -19,7 +19,7 @@ pub struct FiguresArgs {
     #[arg(long, value_name = "N", default_value_t = Options::DEFAULT_VERTICES)]
     vertices: usize,
     /// The real meshes (bumpy-cube.obj, fandisk.off); their figure is skipped when missing.
-    #[arg(long, value_name = "DIR", default_value = "../shared/data")]
+    #[arg(long, value_name = "DIR", default_value = "data/meshes")]
     data: PathBuf,
 }
 

@@ -2,7 +2,7 @@
 //! and solving the fitted model again ([A11] §6; docs/cauchy.md).
 
 use clap::Args;
-use curvenet::cauchy::fit::{fit, resurface, CauchyModel, FitOptions};
+use curvenet::sketch::fit::{fit, resurface, CauchyModel, FitOptions};
 use curvenet::io::{check_mesh_path, read_mesh, write_mesh, write_text, MeshData};
 use curvenet::Error;
 use std::io::Write;
@@ -108,20 +108,20 @@ pub fn run(a: &FitArgs) -> Result<(), Error> {
     if a.bench {
         let positions = mesh.positions.clone();
         let n = positions.len();
-        let mut roles = vec![curvenet::cauchy::Role::Free; n];
+        let mut roles = vec![curvenet::methods::andrews2011::Role::Free; n];
         for &c in &model.constraints {
-            roles[c as usize] = curvenet::cauchy::Role::Cauchy;
+            roles[c as usize] = curvenet::methods::andrews2011::Role::Cauchy;
         }
-        let mut m = curvenet::mesh::Mesh::default();
+        let mut m = curvenet::geom::mesh::Mesh::default();
         m.positions = positions.clone();
         m.faces = mesh.faces.clone();
         let ops = curvenet::operators::cotan_operators(&m, curvenet::Metric::Surface, &positions);
-        let stencil = curvenet::cauchy::Stencil::from_operators(&ops, positions.clone());
+        let stencil = curvenet::methods::andrews2011::Stencil::from_operators(&ops, positions.clone());
         let system =
-            curvenet::cauchy::System::build(&stencil, &roles, a.order, curvenet::cauchy::MicroWeight::Consistent)?;
+            curvenet::methods::andrews2011::System::build(&stencil, &roles, a.order, curvenet::methods::andrews2011::MicroWeight::Consistent)?;
         let ghosts: Vec<curvenet::geom::DVec3> =
             model.ghosts.iter().map(|(_, p)| curvenet::geom::DVec3::from_array(*p)).collect();
-        let b = curvenet::cauchy::reduce::bench(&system, &positions, &ghosts, 1e-3 * report.diagonal, 10, 5)?;
+        let b = curvenet::methods::andrews2011::reduce::bench(&system, &positions, &ghosts, 1e-3 * report.diagonal, 10, 5)?;
         out!(
             "re-solve bench: {} unknowns, {} ghosts; fresh LU factor+solve {:.4} s; basis {:.3} s; \
              all ghosts moved (K + W G) {:.4} s = {:.1}x faster; {} ghosts of 10 vertices moved {:.6} s = {:.0}x faster; \

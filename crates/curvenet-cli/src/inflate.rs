@@ -1,7 +1,7 @@
 //! `curvenet inflate`: an SVG sketch inflated into a surface ([A11] §5; docs/cauchy.md).
 
 use clap::Args;
-use curvenet::cauchy::inflate::{inflate, read_sketch, InflateOptions};
+use curvenet::sketch::inflate::{inflate, read_sketch, InflateOptions};
 use curvenet::io::{check_mesh_path, write_mesh, MeshData};
 use curvenet::Error;
 use std::io::Write;

@@ -9,7 +9,8 @@
 
 use crate::options::{options, SolveArgs};
 use clap::{Args, Subcommand};
-use curvenet::examples::{example, example_truth, torus};
+use curvenet::metrics::example_truth;
+use curvenet::network::examples::{example, torus};
 use curvenet::metrics::{distance_to_truth, DistanceStats, MeshDistance, Truth};
 use curvenet::{Error, Method, Network, Options, Patching, Surface};
 use std::fmt::Write as _;

@@ -159,7 +159,7 @@ fn invalid_values_name_curve_and_sample() {
 }
 
 fn sphere_with(extra: Curve) -> Network {
-    let mut net = curvenet::examples::example("sphere").unwrap();
+    let mut net = curvenet::network::examples::example("sphere").unwrap();
     net.curves.push(extra);
     net
 }
@@ -204,7 +204,7 @@ fn non_manifold_networks_name_the_node_or_segment() {
         })
         .collect();
     // Issue 5: an unclosed boundary curve is rejected, naming the curve.
-    let mut net = curvenet::examples::example("saddle").unwrap();
+    let mut net = curvenet::network::examples::example("saddle").unwrap();
     let b = net.curves.iter().position(|c| c.boundary).unwrap();
     let c = &mut net.curves[b];
     let keep = c.points.len() * 3 / 4;
@@ -224,7 +224,7 @@ fn non_manifold_networks_name_the_node_or_segment() {
     expect_success_with_warnings("self-crossing", &json_of(&net), &["patch 0", "folds over", "fallback domain"]);
 
     // Normals of one curve pointing inward.
-    let mut net = curvenet::examples::example("sphere").unwrap();
+    let mut net = curvenet::network::examples::example("sphere").unwrap();
     net.curves[1].normals.iter_mut().for_each(|n| *n = -*n);
     expect_failure(
         "flipped",
@@ -235,7 +235,7 @@ fn non_manifold_networks_name_the_node_or_segment() {
     );
 
     // A boundary tag on a curve with patches on both sides.
-    let mut net = curvenet::examples::example("sphere").unwrap();
+    let mut net = curvenet::network::examples::example("sphere").unwrap();
     net.curves[0].boundary = true;
     expect_failure(
         "interior-boundary",
@@ -285,7 +285,7 @@ fn failure_leaves_an_existing_output_untouched() {
 #[test]
 fn duplicate_samples_are_merged_with_a_warning() {
     let dir = scratch("dup");
-    let mut net = curvenet::examples::example("sphere").unwrap();
+    let mut net = curvenet::network::examples::example("sphere").unwrap();
     let (p, n) = (net.curves[0].points[5], net.curves[0].normals[5]);
     net.curves[0].points.insert(5, p);
     net.curves[0].normals.insert(5, n);

@@ -5,7 +5,8 @@
 //! Options (after `--`): `--runs K` (default 11), `--vertices N` (default 20000), network
 //! names (default `sphere torus`).
 
-use curvenet::{examples, io, Options, Timings};
+use curvenet::network::examples;
+use curvenet::{io, Options, Timings};
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {

@@ -3,7 +3,8 @@
 //! encoding the PNG included). The surfacing time is printed beside it for comparison.
 
 use curvenet::render::{render, Coloring, RenderOptions, Scene};
-use curvenet::{examples, Options};
+use curvenet::network::examples;
+use curvenet::{Options};
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {

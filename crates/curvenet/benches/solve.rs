@@ -8,8 +8,9 @@
 
 use curvenet::operators::{cotan_operators, Metric};
 use curvenet::solve::Cholesky;
-use curvenet::sparse::product_lower;
-use curvenet::{examples, Options};
+use curvenet::solve::sparse::product_lower;
+use curvenet::network::examples;
+use curvenet::{Options};
 use faer::Mat;
 use std::time::Instant;
 

@@ -2,13 +2,13 @@
 //! mixed Voronoi mass matrix `M`, vertex normals, and the two mean-curvature estimates — the
 //! cotangent formula and the paper's normal-blended formula (eq. 1).
 //!
-//! Sign conventions (DESIGN §1): `(Ls)_ij = ½(cot αᵢⱼ + cot βᵢⱼ)`, `(Ls)_ii = −Σⱼ (Ls)_ij`
+//! Sign conventions (docs/design.md §1): `(Ls)_ij = ½(cot αᵢⱼ + cot βᵢⱼ)`, `(Ls)_ii = −Σⱼ (Ls)_ij`
 //! (negative semi-definite); `L = M⁻¹ Ls`; on a smooth surface `L V ≈ −2 H N` with `H > 0` on a
 //! sphere with outward normals.
 
 use crate::geom::{DVec2, DVec3};
-use crate::mesh::Mesh;
-use crate::sparse::Csc;
+use crate::geom::mesh::{LaplacianPattern, Mesh};
+use crate::solve::sparse::Csc;
 
 /// Where the cotangent weights and areas are measured.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -89,103 +89,6 @@ where
         total.par_iter_mut().zip(p.par_iter()).with_min_len(8192).for_each(|(a, b)| *a += *b);
     }
     total
-}
-
-/// The sparsity pattern of `Ls`: each vertex's neighbours and itself, sorted.
-fn laplacian_pattern(n: usize, faces: &[[u32; 3]]) -> Csc {
-    let mut deg = vec![1usize; n];
-    for f in faces {
-        for k in 0..3 {
-            deg[f[k] as usize] += 2; // upper bound: each face adds two neighbours
-        }
-    }
-    let mut col_ptr = Vec::with_capacity(n + 1);
-    col_ptr.push(0);
-    for j in 0..n {
-        col_ptr.push(col_ptr[j] + deg[j]);
-    }
-    let mut rows = vec![u32::MAX; col_ptr[n]];
-    let mut fill: Vec<usize> = col_ptr[..n].to_vec();
-    for (j, f) in fill.iter_mut().enumerate() {
-        rows[*f] = j as u32;
-        *f += 1;
-    }
-    for f in faces {
-        for k in 0..3 {
-            let j = f[k] as usize;
-            for i in [f[(k + 1) % 3], f[(k + 2) % 3]] {
-                rows[fill[j]] = i;
-                fill[j] += 1;
-            }
-        }
-    }
-    // Sort each column (in parallel), then deduplicate and compact.
-    {
-        use rayon::prelude::*;
-        let mut columns: Vec<&mut [u32]> = Vec::with_capacity(n);
-        let mut rest = rows.as_mut_slice();
-        for j in 0..n {
-            let (col, tail) = std::mem::take(&mut rest).split_at_mut(col_ptr[j + 1] - col_ptr[j]);
-            columns.push(&mut col[..fill[j] - col_ptr[j]]);
-            rest = tail;
-        }
-        columns.par_iter_mut().with_min_len(4096).for_each(|c| c.sort_unstable());
-    }
-    let mut out =
-        Csc { nrows: n, ncols: n, col_ptr: Vec::with_capacity(n + 1), row_idx: Vec::new(), values: Vec::new() };
-    out.col_ptr.push(0);
-    for j in 0..n {
-        let mut last = u32::MAX;
-        for &r in &rows[col_ptr[j]..fill[j]] {
-            if r != last {
-                out.row_idx.push(r);
-                last = r;
-            }
-        }
-        out.col_ptr.push(out.row_idx.len());
-    }
-    out.values = vec![0.0; out.row_idx.len()];
-    out
-}
-
-/// The sparsity pattern of `Ls` for a set of faces, with the position of every face's
-/// entries in the value array, so that assembling `Ls` for any metric is a pass over the faces
-/// without searches.
-#[derive(Clone, Debug, Default)]
-pub struct LaplacianPattern {
-    /// `Ls`'s pattern (values zero).
-    pub csc: Csc,
-    /// Position of each vertex's diagonal entry in `csc.values`.
-    diag: Vec<u32>,
-    /// Per face and corner `k` (the edge opposite `k`, between `i = k+1` and `j = k+2`):
-    /// positions of the entries `(i, j)` and `(j, i)`.
-    slots: Vec<[[u32; 2]; 3]>,
-}
-
-impl LaplacianPattern {
-    pub fn new(n: usize, faces: &[[u32; 3]]) -> Self {
-        let csc = laplacian_pattern(n, faces);
-        let find = |i: usize, j: usize| {
-            let r = csc.col_ptr[j]..csc.col_ptr[j + 1];
-            let k = csc.row_idx[r.clone()].binary_search(&(i as u32)).unwrap_or(0);
-            (r.start + k) as u32
-        };
-        use rayon::prelude::*;
-        let diag = (0..n).into_par_iter().with_min_len(8192).map(|v| find(v, v)).collect();
-        let slots = faces
-            .par_iter()
-            .with_min_len(8192)
-            .map(|f| {
-                let mut s = [[0u32; 2]; 3];
-                for (k, sk) in s.iter_mut().enumerate() {
-                    let (i, j) = (f[(k + 1) % 3] as usize, f[(k + 2) % 3] as usize);
-                    *sk = [find(i, j), find(j, i)];
-                }
-                s
-            })
-            .collect();
-        LaplacianPattern { csc, diag, slots }
-    }
 }
 
 /// Assembles `Ls` and `M` on `mesh` with the given metric; `positions` are the 3D positions used
@@ -320,7 +223,7 @@ pub fn normals_and_mean_curvature(faces: &[[u32; 3]], positions: &[DVec3], skip:
 ///
 /// summed over the edges `vᵢ → vᵢ₊₁` opposite to `v` in its one-ring (counter-clockwise), with
 /// `A = area[v]` the Voronoi area of `v`. `h ≈ H n` when `area` is measured on the surface
-/// `V*` ([`mixed_areas`]); the returned scalar is the **signed** `H = h · n*(v)` (DESIGN §1: the
+/// `V*` ([`mixed_areas`]); the returned scalar is the **signed** `H = h · n*(v)` (docs/design.md §1: the
 /// papers' `‖h‖` loses the sign). Vertices in `skip` (open boundary: incomplete ring) get 0.
 ///
 /// Which area to use is a modelling choice: with the planar metric of [CG] §3.4, dividing by

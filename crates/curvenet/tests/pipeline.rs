@@ -1,7 +1,8 @@
 //! End-to-end tests of the surfacing pipeline on networks with known answers.
 
 use curvenet::curves::CurveSpline;
-use curvenet::examples::{example, example_truth};
+use curvenet::metrics::example_truth;
+use curvenet::network::examples::example;
 use curvenet::geom::DVec3;
 use curvenet::metrics::{distance_to_truth, DistanceStats, MeshDistance, Truth};
 use curvenet::topology::{find_nodes, find_patches, Patch};
@@ -100,7 +101,7 @@ fn torus_with_negative_curvature_inside() {
     // R 3, r 2: the mean curvature is negative on the inner side; the signed guide must not push
     // any region to the wrong side.
     let (big_r, r) = (3.0, 2.0);
-    let net = curvenet::examples::torus(big_r, r);
+    let net = curvenet::network::examples::torus(big_r, r);
     let truth = Truth::Torus { major: big_r, minor: r };
     let s = surface(&net, &Options::default()).unwrap();
     let e = distance_to_truth(&s.mesh.positions, s.mesh.num_curve, &truth);

@@ -2,7 +2,7 @@
 //! R = 3, r = 2 is red (H > 0) outside and blue (H < 0) on the inner rim; a rendered PNG
 //! decodes back to the image.
 
-use curvenet::examples;
+use curvenet::network::examples;
 use curvenet::render::{png, render, Coloring, RenderOptions, Scene, View};
 use curvenet::Options;
 

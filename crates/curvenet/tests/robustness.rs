@@ -1,8 +1,8 @@
 //! Robustness: scale invariance (a network scaled by 1e±6 gives the same surface scaled; 1e±12
-//! works too), the output invariants of `curvenet::check` on every bundled network, and the
+//! works too), the output invariants of `curvenet::metrics::check` on every bundled network, and the
 //! regression cases the fuzzers found (`fuzz/`), each named after what it exposed.
 
-use curvenet::check::{check_surface, Constraints};
+use curvenet::metrics::check::{check_surface, Constraints};
 use curvenet::geom::DVec3;
 use curvenet::metrics::{distance_to_truth, Truth};
 use curvenet::{Network, Options};
@@ -19,7 +19,7 @@ fn scaled(net: &Network, s: f64, shift: DVec3) -> Network {
 /// surface scaled back, its vertex count and its mean free-vertex distance to `truth` (scaled
 /// back). Every run must pass the output invariants.
 fn runs(name: &str, options: &Options, scales: &[f64], shift: DVec3, truth: &Truth) -> Vec<(Vec<DVec3>, usize, f64)> {
-    let net = curvenet::examples::example(name).unwrap();
+    let net = curvenet::network::examples::example(name).unwrap();
     std::iter::once(1.0)
         .chain(scales.iter().copied())
         .map(|s| {
@@ -81,8 +81,8 @@ fn decimal_scales_keep_the_accuracy() {
 #[test]
 fn bundled_networks_pass_the_invariant_checker() {
     use curvenet::{Method, Patching};
-    for (name, _) in curvenet::examples::EXAMPLES {
-        let net = curvenet::examples::example(name).unwrap();
+    for (name, _) in curvenet::network::examples::EXAMPLES {
+        let net = curvenet::network::examples::example(name).unwrap();
         for (method, patching) in [
             (Method::NormalControl, Patching::Conformal),
             (Method::NormalControl, Patching::Planar),
@@ -100,7 +100,7 @@ fn bundled_networks_pass_the_invariant_checker() {
 /// The checker itself catches what it promises: a flipped face, a hole, a NaN, a far sample.
 #[test]
 fn the_invariant_checker_catches_violations() {
-    let net = curvenet::examples::example("sphere").unwrap();
+    let net = curvenet::network::examples::example("sphere").unwrap();
     let good = curvenet::surface(&net, &Options { vertices: Some(800), ..Options::fast() }).unwrap();
     let snap = net.snap_tolerance();
     assert!(check_surface(&good, &net, snap, Constraints::Hard).is_empty());
@@ -127,7 +127,7 @@ fn the_invariant_checker_catches_violations() {
 
 /// What the `pipeline` fuzz target asserts, for one input.
 fn replay(data: &[u8]) -> Option<Result<usize, String>> {
-    let (net, options) = curvenet::check::fuzz_case(data)?;
+    let (net, options) = curvenet::metrics::check::fuzz_case(data)?;
     Some(match curvenet::surface(&net, &options) {
         Ok(s) => {
             let hard = if options.soft.is_some() { Constraints::Soft } else { Constraints::Hard };
@@ -162,7 +162,7 @@ fn fuzz_harness_smoke() {
 /// subsampled to ~21 samples per curve, scaled by 1e-7, samples moved by up to half the spacing
 /// and normals by up to 0.5: two curves pass within the spacing of each other near a node, the
 /// planar tessellations of patches 1 and 3 overlap and the output had an edge in four triangles.
-/// Now the pipeline checks every tessellation ([`curvenet::check::bad_edge`]) and reports the
+/// Now the pipeline checks every tessellation ([`curvenet::geom::mesh::bad_edge`]) and reports the
 /// overlap as an error naming the patches; a future tessellation that resolves it must still
 /// give a surface that passes the invariants. Kept as a network file (independent of
 /// `fuzz_case` changes).
@@ -203,7 +203,7 @@ fn fuzz_ply_element_without_properties_is_fast() {
 /// samples per curve, scaled by 1e3, samples moved by up to 0.1 of the spacing. A rim sample
 /// lay 125 from the surface, over the checker's first tolerance (half the spacing plus the
 /// snap, 122): the node had moved it, as nodes do by up to a quarter of an input edge. The
-/// invariant now allows what the node contract allows (`curvenet::check`, invariant 6), and
+/// invariant now allows what the node contract allows (`curvenet::metrics::check`, invariant 6), and
 /// this input must pass.
 #[test]
 fn fuzz_sparse_noisy_saddle_samples_moved_by_nodes() {

@@ -86,15 +86,11 @@ fn two_separate_spheres_are_two_components_of_one_surface() {
     assert!(rel <= 0.005, "RMS {:.3}% of the diagonal", 100.0 * rel);
 }
 
-/// The real meshes of `../shared/data` (see its README), when present: a smaller plane count
+/// The real meshes of `data/meshes` (see its README): a smaller plane count
 /// than `bench/real_meshes.sh` to keep the test short.
 #[test]
-fn real_meshes_when_present() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
-    if !dir.exists() {
-        eprintln!("skipped: {} not found", dir.display());
-        return;
-    }
+fn real_meshes() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/meshes");
     // The beetle at 6 and 10 planes: issue 5's failures (a crossing snapped past an open
     // curve's end, a shallow meeting read as two nodes, holes reached by one section).
     for (name, planes) in

@@ -187,7 +187,7 @@ pub unsafe extern "C" fn cn_example(ptr: *const u8, len: usize) -> u32 {
     finish((|| {
         let name = text_arg(ptr, len)?;
         let net =
-            curvenet::examples::example(&name).ok_or_else(|| Error::Usage(format!("no example named \"{name}\"")))?;
+            curvenet::network::examples::example(&name).ok_or_else(|| Error::Usage(format!("no example named \"{name}\"")))?;
         set_text(curvenet::io::network_to_string(&net, NetworkFormat::Json));
         Ok(())
     })())
@@ -203,7 +203,7 @@ pub unsafe extern "C" fn cn_rotate_normals(ptr: *const u8, len: usize, format: u
     finish((|| {
         let text = text_arg(ptr, len)?;
         let network = parse_network(&text, format_of(format)?, "network")?;
-        let turned = curvenet::edit::rotate_normals(&network, curve as usize, degrees)?;
+        let turned = curvenet::network::edit::rotate_normals(&network, curve as usize, degrees)?;
         set_text(curvenet::io::network_to_string(&turned, NetworkFormat::Json));
         Ok(())
     })())

@@ -1,4 +1,4 @@
-//! The reference JSON network format (DESIGN §3):
+//! The reference JSON network format (docs/design.md §3):
 //! `{"curves": [{"name", "closed", "boundary", "points": [[x,y,z],…], "normals": [[…],…]}], "snap"}`.
 //! Unknown fields are ignored so that later extensions stay readable by older versions.
 

@@ -1,4 +1,4 @@
-//! Triangle meshes out and back in (DESIGN §4): OBJ and OFF (text, full `f64` round-trip
+//! Triangle meshes out and back in (docs/design.md §4): OBJ and OFF (text, full `f64` round-trip
 //! precision) and PLY (binary little-endian, with per-vertex normal, signed mean curvature
 //! `mean_curvature` and the curve-vertex flag `curve`). The reader also accepts ASCII and
 //! big-endian PLY and polygon faces (fan-triangulated), so that meshes from other tools load.

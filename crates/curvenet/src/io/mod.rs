@@ -1,5 +1,5 @@
 //! Reading and writing files: curve networks in (JSON, OBJ, `.net`), meshes out (OBJ, PLY,
-//! OFF) and back in. Formats are documented in the README ("Formats") and DESIGN §3–4; the
+//! OFF) and back in. Formats are documented in the README ("Formats") and docs/design.md §3–4; the
 //! format is chosen by the file extension.
 //!
 //! Every writer is atomic: it writes a temporary file beside the target and renames it, so a
@@ -20,7 +20,7 @@ use std::path::Path;
 /// File formats for curve networks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NetworkFormat {
-    /// The reference JSON format (DESIGN §3).
+    /// The reference JSON format (docs/design.md §3).
     Json,
     /// Wavefront OBJ polylines: `v`, `vn` paired by index, `l`, group `boundary`.
     Obj,

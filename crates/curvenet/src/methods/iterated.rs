@@ -13,7 +13,7 @@
 //!    acts at scales above `prior_scale · s` (scale and resolution independent);
 //! 3. evaluates the guide `H` (eq. 1) on `(V_k, N)` with the areas `M`;
 //! 4. fits `min Σ_v A_v ‖(L V)_v + 2 H n_v‖² + μ ‖V − V_k‖²_M`: the area-weighted energy
-//!    (DESIGN §1; the unweighted one drifts) plus the same proximal term, so that steps 2 and
+//!    (docs/design.md §1; the unweighted one drifts) plus the same proximal term, so that steps 2 and
 //!    4 share one matrix `Ls M⁻¹ Ls + μ M` and one factorisation per iteration (whose symbolic
 //!    analysis is computed once for the whole run: the pattern never changes);
 //! 5. keeps only the normal component of the update, `V_{k+1} = V_k + n nᵀ (V' − V_k)`: the
@@ -25,13 +25,13 @@
 //! updates grow (divergence).
 
 use super::{check_finite, factor_on, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings, Weighting};
-use crate::clock::Instant;
+use crate::solve::timing::Instant;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
-use crate::mesh::Mesh;
+use crate::geom::mesh::Mesh;
 use crate::operators::{blended_mean_curvature, cotan_operators, vertex_normals, Metric};
 use crate::solve::Cholesky;
-use crate::sparse::{product_lower, Csc};
+use crate::solve::sparse::{product_lower, Csc};
 use faer::Mat;
 
 /// Parameters of the iteration.

@@ -17,10 +17,10 @@
 
 use super::normal_control::{propagate, Propagation};
 use super::{check_finite, known_rows, scatter, MethodResult, SolveTimings};
-use crate::clock::Instant;
+use crate::solve::timing::Instant;
 use crate::error::Result;
 use crate::geom::DVec3;
-use crate::mesh::Mesh;
+use crate::geom::mesh::Mesh;
 use crate::operators::{blended_mean_curvature, Operators};
 use crate::solve::Cholesky;
 use faer::Mat;

@@ -5,21 +5,23 @@
 //! - [`iterated`]: normal-control iterated with operators rebuilt on the 3D surface.
 //! - [`polyharmonic`]: the biharmonic `Δ²V = 0` and triharmonic `Δ³V = 0` baselines ([CG] §4.3).
 //! - [`method4`]: [CG] §4.2 eq. 4, `Δ²V = 0` with `ΔV = b₁` on the curves.
-//! - [`short_paper`]: the energy of the authors' Eurographics 2016 short paper ([EG]).
+//! - [`eg2016`]: the energy of the authors' Eurographics 2016 short paper ([EG]).
 //!
 //! Every method solves for the free vertices with the curve vertices fixed (hard constraints
 //! eliminated), factoring each distinct system matrix once.
 
+pub mod andrews2011;
+pub mod eg2016;
+pub mod harmonic;
 pub mod iterated;
 pub mod method4;
 pub mod normal_control;
 pub mod polyharmonic;
-pub mod short_paper;
 
 use crate::geom::DVec3;
-use crate::mesh::Mesh;
+use crate::geom::mesh::Mesh;
 use crate::solve::Cholesky;
-use crate::sparse::Csc;
+use crate::solve::sparse::Csc;
 use faer::Mat;
 
 /// Which surfacing method to run.
@@ -38,7 +40,7 @@ pub enum Method {
     /// [EG]: `‖Δ²V‖² + ω₁ ‖ΔV + 2H n*‖² + ω₀ soft`.
     ShortPaper,
     /// [A11]: `Δᵏ V = 0` (`Options::order`) with ghost-vertex Cauchy constraints on the curves
-    /// ([`crate::cauchy`]).
+    /// ([`crate::methods::andrews2011`]).
     Cauchy,
 }
 
@@ -69,7 +71,7 @@ impl Method {
     }
 }
 
-/// How the terms of the normal-control energy are weighted (DESIGN §1).
+/// How the terms of the normal-control energy are weighted (docs/design.md §1).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Weighting {
     /// `Σ_v A_v ‖(LV)_v + 2H n*‖²`: the system matrix is `Ls M⁻¹ Ls`, the same as the

@@ -6,11 +6,11 @@
 //! 1. Propagation: `L² V* = 0`, `L² N* = 0` on the free vertices, curve vertices fixed; in
 //!    symmetric form `(Ls M⁻¹ Ls)_ff X_f = −(Ls M⁻¹ Ls)_fc X_c`, one factorisation for the six
 //!    columns; `N*` normalised.
-//! 2. Guide: `H(v) = h(v) · n*(v)` with `h` from eq. 1 on `(V*, N*)` (signed, DESIGN §1),
+//! 2. Guide: `H(v) = h(v) · n*(v)` with `h` from eq. 1 on `(V*, N*)` (signed, docs/design.md §1),
 //!    divided by the Laplacian's own Voronoi area `M` ([`GuideArea::Mass`], default) or by the
 //!    area of `v*` on `V*` as the paper states it ([`GuideArea::Surface`]).
 //! 3. Fit: `min Σ_v w_v ‖(Ls V)_v − b_v‖²`, `b_v = −2 A_v H_v n*_v` (that is `L V = −2 H N*`),
-//!    with `w_v = 1/A_v` (area-weighted, DESIGN §1) or `1/A_v²` ([CG] eq. 2 as written). Rows
+//!    with `w_v = 1/A_v` (area-weighted, docs/design.md §1) or `1/A_v²` ([CG] eq. 2 as written). Rows
 //!    of open-boundary vertices are left out (their one-sided Laplacian is not a curvature).
 //!    With the area weighting and no open boundary the matrix is the propagation's, and its
 //!    factorisation is reused.
@@ -25,13 +25,13 @@
 use super::{
     check_finite, factor_on, known_rows, scatter, weighted_rhs, GuideArea, MethodResult, SolveTimings, Weighting,
 };
-use crate::clock::Instant;
+use crate::solve::timing::Instant;
 use crate::error::{Error, Result};
 use crate::geom::{fmt_point, DVec3};
-use crate::mesh::Mesh;
+use crate::geom::mesh::Mesh;
 use crate::operators::{blended_mean_curvature, mixed_areas, Operators};
 use crate::solve::Cholesky;
-use crate::sparse::product_lower;
+use crate::solve::sparse::product_lower;
 use faer::Mat;
 
 /// Parameters of one normal-control solve.
@@ -61,7 +61,7 @@ pub(crate) struct Propagation {
 /// The factorisations of the normal-control systems, kept between solves on the same mesh,
 /// operators and parameters: the matrices depend on neither the curve positions nor the
 /// normals, so a solve with new curve normals costs only right-hand sides and triangular
-/// solves ([`crate::surfacer::Surfacer`]).
+/// solves ([`crate::pipeline::surfacer::Surfacer`]).
 #[derive(Default)]
 pub struct Factors {
     /// `(Ls M⁻¹ Ls)_ff` of the propagation.

@@ -6,11 +6,11 @@
 //! `harmonic(V, F, b, bc, k)` for the cotangent Laplacian.
 
 use super::{check_finite, factor_on, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings};
-use crate::clock::Instant;
+use crate::solve::timing::Instant;
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::geom::mesh::Mesh;
 use crate::operators::Operators;
-use crate::sparse::{product_lower, Csc};
+use crate::solve::sparse::{product_lower, Csc};
 use faer::Mat;
 
 /// Solves `Δᵏ V = 0` (`order` 2 or 3) for the free vertices of `mesh`.
@@ -46,7 +46,7 @@ pub(crate) fn system(ops: &Operators, order: usize, known: &Mat<f64>, first: usi
         (product_lower(&ops.ls, &inv_m, &ops.ls, first), weighted_rhs(&ops.ls, &inv_m, None, known, first))
     } else {
         // T = Ls M⁻¹ Ls; Q₃ = −Ls M⁻¹ T; rhs = −(Q₃ X̃)_f = (Ls M⁻¹ T X̃)_f.
-        let tt = crate::sparse::product(&ops.ls, &inv_m, &ops.ls, 0);
+        let tt = crate::solve::sparse::product(&ops.ls, &inv_m, &ops.ls, 0);
         let neg: Vec<f64> = inv_m.iter().map(|x| -x).collect();
         let q3 = product_lower(&ops.ls, &neg, &tt, first);
         let mut y = Mat::<f64>::zeros(n, known.ncols());

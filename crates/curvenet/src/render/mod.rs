@@ -10,7 +10,7 @@
 //!
 //! ```no_run
 //! # use curvenet::render::*;
-//! let net = curvenet::examples::example("torus").ok_or(curvenet::Error::Usage("no torus example".into()))?;
+//! let net = curvenet::network::examples::example("torus").ok_or(curvenet::Error::Usage("no torus example".into()))?;
 //! let surface = curvenet::surface(&net, &curvenet::Options::default())?;
 //! let scene = Scene::from_surface(&surface).with_network_curves(&net);
 //! let image = render(&scene, &RenderOptions { colorings: vec![Coloring::Curvature], ..Default::default() })?;
@@ -561,5 +561,5 @@ fn render_panel(p: &Panel<'_>, pw: u32, ph: u32) -> Image {
 }
 
 #[cfg(test)]
-#[path = "../tests/render.rs"]
+#[path = "tests/render.rs"]
 mod tests;

@@ -5,6 +5,7 @@
 pub mod cycles;
 pub mod nodes;
 pub mod open;
+pub mod resample;
 
 pub use cycles::{find_patches, HalfEdge, Patch};
 pub use nodes::{find_nodes, Graph, Node, Segment, SplitCurve};

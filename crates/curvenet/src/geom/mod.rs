@@ -1,0 +1,140 @@
+//! Small geometric helpers shared by the pipeline stages: vector aliases, bounding boxes,
+//! orthonormal frames and segment–segment closest points.
+
+pub mod mesh;
+
+pub use glam::{DVec2, DVec3};
+
+/// Axis-aligned bounding box of a point set.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Aabb {
+    /// The empty box (min = +inf, max = −inf); `extend` grows it.
+    pub fn empty() -> Self {
+        Aabb { min: DVec3::splat(f64::INFINITY), max: DVec3::splat(f64::NEG_INFINITY) }
+    }
+
+    /// Bounding box of `points`; empty when `points` is.
+    pub fn of(points: impl IntoIterator<Item = DVec3>) -> Self {
+        let mut b = Self::empty();
+        for p in points {
+            b.extend(p);
+        }
+        b
+    }
+
+    pub fn extend(&mut self, p: DVec3) {
+        self.min = self.min.min(p);
+        self.max = self.max.max(p);
+    }
+
+    /// Length of the diagonal (0 for a single point, NaN-free: 0 for the empty box).
+    pub fn diagonal(&self) -> f64 {
+        if self.min.x > self.max.x {
+            return 0.0;
+        }
+        (self.max - self.min).length()
+    }
+
+    pub fn center(&self) -> DVec3 {
+        0.5 * (self.min + self.max)
+    }
+}
+
+/// Two unit vectors `(e1, e2)` with `e1 × e2 = n` for a unit `n` (a right-handed frame of the
+/// plane orthogonal to `n`).
+pub fn plane_frame(n: DVec3) -> (DVec3, DVec3) {
+    // Pick the coordinate axis least aligned with n to avoid cancellation.
+    let a = if n.x.abs() <= n.y.abs() && n.x.abs() <= n.z.abs() {
+        DVec3::X
+    } else if n.y.abs() <= n.z.abs() {
+        DVec3::Y
+    } else {
+        DVec3::Z
+    };
+    let e1 = (a - n * a.dot(n)).normalize();
+    let e2 = n.cross(e1);
+    (e1, e2)
+}
+
+/// Closest points of the segments `p0p1` and `q0q1`: returns `(s, t)` in `[0,1]²` such that
+/// `p0 + s (p1 − p0)` and `q0 + t (q1 − q0)` are closest (Ericson, *Real-Time Collision
+/// Detection*, §5.1.9). Degenerate (zero-length) segments are handled as points.
+pub fn closest_params_segment_segment(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> (f64, f64) {
+    let d1 = p1 - p0;
+    let d2 = q1 - q0;
+    let r = p0 - q0;
+    let a = d1.length_squared();
+    let e = d2.length_squared();
+    let f = d2.dot(r);
+    let eps = 1e-300;
+    if a <= eps && e <= eps {
+        return (0.0, 0.0);
+    }
+    if a <= eps {
+        return (0.0, (f / e).clamp(0.0, 1.0));
+    }
+    let c = d1.dot(r);
+    if e <= eps {
+        return ((-c / a).clamp(0.0, 1.0), 0.0);
+    }
+    let b = d1.dot(d2);
+    let denom = a * e - b * b;
+    let mut s = if denom > 1e-14 * a * e { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
+    let mut t = (b * s + f) / e;
+    if t < 0.0 {
+        t = 0.0;
+        s = (-c / a).clamp(0.0, 1.0);
+    } else if t > 1.0 {
+        t = 1.0;
+        s = ((b - c) / a).clamp(0.0, 1.0);
+    }
+    (s, t)
+}
+
+/// Signed area of a closed planar polygon (positive when counter-clockwise).
+pub fn polygon_signed_area(poly: &[DVec2]) -> f64 {
+    let n = poly.len();
+    let mut a = 0.0;
+    for i in 0..n {
+        let p = poly[i];
+        let q = poly[(i + 1) % n];
+        a += p.perp_dot(q);
+    }
+    0.5 * a
+}
+
+/// Vector area `½ Σ pᵢ × pᵢ₊₁` of a closed 3D polygon: its direction is the normal of the best
+/// fitting plane (oriented by the traversal, right-hand rule), its length the projected area.
+pub fn polygon_vector_area(poly: &[DVec3]) -> DVec3 {
+    let n = poly.len();
+    if n == 0 {
+        return DVec3::ZERO;
+    }
+    let o = poly[0];
+    let mut a = DVec3::ZERO;
+    for i in 1..n.saturating_sub(1) {
+        a += (poly[i] - o).cross(poly[i + 1] - o);
+    }
+    0.5 * a
+}
+
+/// Formats a point for messages: `(x, y, z)` with 6 decimals, or in scientific notation with
+/// 7 significant digits when the point's largest coordinate is below 1e-3 or from 1e7 (tiny
+/// and huge networks keep readable positions).
+pub fn fmt_point(p: DVec3) -> String {
+    let m = p.abs().max_element();
+    if m == 0.0 || (1e-3..1e7).contains(&m) || !m.is_finite() {
+        format!("({:.6}, {:.6}, {:.6})", p.x, p.y, p.z)
+    } else {
+        format!("({:.6e}, {:.6e}, {:.6e})", p.x, p.y, p.z)
+    }
+}
+
+#[cfg(test)]
+#[path = "tests/geom.rs"]
+mod tests;

@@ -1,0 +1,508 @@
+//! Measuring a surface against an analytic ground truth ([CG] §4.3, Table 1): distances of the
+//! free vertices to the true surface and angles between the mesh normals and the true normals.
+
+pub mod check;
+
+use crate::geom::DVec3;
+
+/// An analytic surface with exact closest-point distances.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Truth {
+    Sphere {
+        center: DVec3,
+        radius: f64,
+    },
+    /// Torus around the z axis through the origin.
+    Torus {
+        major: f64,
+        minor: f64,
+    },
+    /// Infinite cylinder around the z axis.
+    Cylinder {
+        radius: f64,
+    },
+    /// `z = (x² − y²)/2`.
+    Saddle,
+    /// Axis-aligned ellipsoid `x²/a² + y²/b² + z²/c² = 1`.
+    Ellipsoid {
+        axes: DVec3,
+    },
+    /// The plane `n · x = offset` (unit `n`).
+    Plane {
+        normal: DVec3,
+        offset: f64,
+    },
+}
+
+impl Truth {
+    /// Unsigned distance from `p` to the surface.
+    pub fn distance(&self, p: DVec3) -> f64 {
+        (p - self.closest_point(p)).length()
+    }
+
+    /// The closest point of the surface to `p`.
+    pub fn closest_point(&self, p: DVec3) -> DVec3 {
+        match *self {
+            Truth::Sphere { center, radius } => center + (p - center).normalize_or(DVec3::X) * radius,
+            Truth::Torus { major, minor } => {
+                let q = DVec3::new(p.x, p.y, 0.0).normalize_or(DVec3::X) * major;
+                q + (p - q).normalize_or(DVec3::Z) * minor
+            }
+            Truth::Cylinder { radius } => {
+                let r = DVec3::new(p.x, p.y, 0.0).normalize_or(DVec3::X) * radius;
+                DVec3::new(r.x, r.y, p.z)
+            }
+            Truth::Ellipsoid { axes } => closest_on_ellipsoid(axes, p),
+            Truth::Plane { normal, offset } => p - normal * (normal.dot(p) - offset),
+            Truth::Saddle => {
+                // Newton's method on the squared distance to (x, y, f(x, y)).
+                let (mut x, mut y) = (p.x, p.y);
+                for _ in 0..30 {
+                    let f = 0.5 * (x * x - y * y);
+                    let (fx, fy) = (x, -y);
+                    let dz = f - p.z;
+                    let (gx, gy) = (x - p.x + dz * fx, y - p.y + dz * fy);
+                    let (hxx, hyy, hxy) = (1.0 + fx * fx + dz, 1.0 + fy * fy - dz, fx * fy);
+                    let det = hxx * hyy - hxy * hxy;
+                    if det.abs() < 1e-300 {
+                        break;
+                    }
+                    let (sx, sy) = ((hyy * gx - hxy * gy) / det, (hxx * gy - hxy * gx) / det);
+                    x -= sx;
+                    y -= sy;
+                    if sx.abs() + sy.abs() < 1e-15 {
+                        break;
+                    }
+                }
+                DVec3::new(x, y, 0.5 * (x * x - y * y))
+            }
+        }
+    }
+
+    /// Unit outward normal of the surface at its closest point to `p`.
+    pub fn normal(&self, p: DVec3) -> DVec3 {
+        let q = self.closest_point(p);
+        match *self {
+            Truth::Sphere { center, .. } => (q - center).normalize_or(DVec3::Z),
+            Truth::Torus { major, .. } => {
+                (q - DVec3::new(q.x, q.y, 0.0).normalize_or(DVec3::X) * major).normalize_or(DVec3::Z)
+            }
+            Truth::Cylinder { .. } => DVec3::new(q.x, q.y, 0.0).normalize_or(DVec3::X),
+            Truth::Saddle => DVec3::new(-q.x, q.y, 1.0).normalize(),
+            Truth::Ellipsoid { axes } => (q / (axes * axes)).normalize_or(DVec3::Z),
+            Truth::Plane { normal, .. } => normal,
+        }
+    }
+
+    /// Parses a truth specification: `sphere` (unit), `sphere:r`, `sphere:cx,cy,cz,r`,
+    /// `torus:R,r` (axis z), `cylinder:r` (axis z), `ellipsoid:a,b,c`, `plane` (z = 0),
+    /// `plane:nx,ny,nz,d` (n·x = d), `saddle` (z = (x² − y²)/2). `None` when `spec` is not of
+    /// this form (it may then name a reference mesh file).
+    pub fn parse(spec: &str) -> Option<std::result::Result<Truth, String>> {
+        let (name, args) = match spec.split_once(':') {
+            Some((n, a)) => (n, Some(a)),
+            None => (spec, None),
+        };
+        let known = ["sphere", "torus", "cylinder", "ellipsoid", "plane", "saddle"];
+        if !known.contains(&name) {
+            return None;
+        }
+        let nums: std::result::Result<Vec<f64>, String> = match args {
+            None => Ok(Vec::new()),
+            Some(a) => a
+                .split(',')
+                .map(|x| {
+                    x.trim()
+                        .parse::<f64>()
+                        .ok()
+                        .filter(|v| v.is_finite())
+                        .ok_or_else(|| format!("\"{x}\" is not a number"))
+                })
+                .collect(),
+        };
+        let nums = match nums {
+            Ok(v) => v,
+            Err(e) => return Some(Err(format!("truth \"{spec}\": {e}"))),
+        };
+        let bad = |want: &str| Some(Err(format!("truth \"{spec}\": expected {name}{want}")));
+        let positive = |v: &[f64]| v.iter().all(|&x| x > 0.0);
+        Some(Ok(match (name, nums.as_slice()) {
+            ("sphere", []) => Truth::Sphere { center: DVec3::ZERO, radius: 1.0 },
+            ("sphere", [r]) if *r > 0.0 => Truth::Sphere { center: DVec3::ZERO, radius: *r },
+            ("sphere", [x, y, z, r]) if *r > 0.0 => Truth::Sphere { center: DVec3::new(*x, *y, *z), radius: *r },
+            ("sphere", _) => return bad(":cx,cy,cz,r (or :r) with r > 0"),
+            ("torus", [big, small]) if positive(&[*big, *small]) => Truth::Torus { major: *big, minor: *small },
+            ("torus", _) => return bad(":R,r with R, r > 0"),
+            ("cylinder", [r]) if *r > 0.0 => Truth::Cylinder { radius: *r },
+            ("cylinder", _) => return bad(":r with r > 0"),
+            ("ellipsoid", [a, b, c]) if positive(&[*a, *b, *c]) => Truth::Ellipsoid { axes: DVec3::new(*a, *b, *c) },
+            ("ellipsoid", _) => return bad(":a,b,c with a, b, c > 0"),
+            ("plane", []) => Truth::Plane { normal: DVec3::Z, offset: 0.0 },
+            ("plane", [x, y, z, d]) if DVec3::new(*x, *y, *z).length() > 0.0 => {
+                let n = DVec3::new(*x, *y, *z);
+                Truth::Plane { normal: n.normalize(), offset: d / n.length() }
+            }
+            ("plane", _) => return bad(" or plane:nx,ny,nz,d with a non-zero normal"),
+            ("saddle", []) => Truth::Saddle,
+            _ => return bad(" without parameters"),
+        }))
+    }
+}
+
+/// Closest point on the ellipsoid with semi-axes `e` to `p`: the root `t` of
+/// `Σ (eᵢ yᵢ / (eᵢ² + t))² = 1` by bisection, `xᵢ = eᵢ² yᵢ / (eᵢ² + t)` (the Lagrange condition).
+/// Exact for points outside or near the surface; a point deep inside on a symmetry plane of
+/// the smallest axis falls back to radial projection.
+fn closest_on_ellipsoid(e: DVec3, p: DVec3) -> DVec3 {
+    let e2 = e * e;
+    let f = |t: f64| (0..3).map(|i| (e[i] * p[i] / (e2[i] + t)).powi(2)).sum::<f64>() - 1.0;
+    let lo_bound = (0..3).filter(|&i| p[i] != 0.0).map(|i| -e2[i]).fold(f64::NEG_INFINITY, f64::max);
+    if lo_bound == f64::NEG_INFINITY {
+        // The centre: the closest points are the ends of the smallest axis.
+        let k = if e.x <= e.y && e.x <= e.z {
+            0
+        } else if e.y <= e.z {
+            1
+        } else {
+            2
+        };
+        let mut q = DVec3::ZERO;
+        q[k] = e[k];
+        return q;
+    }
+    let radial = |p: DVec3| p / ((p / e).length());
+    let mut lo = lo_bound + 1e-300f64.max(1e-15 * e2.max_element());
+    if f(lo) < 0.0 {
+        return radial(p);
+    }
+    let mut hi = e.max_element() * p.length() + 1.0;
+    while f(hi) > 0.0 {
+        hi *= 2.0;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo <= 1e-15 * hi.abs().max(1e-300) {
+            break;
+        }
+    }
+    let t = 0.5 * (lo + hi);
+    DVec3::new(e2.x * p.x / (e2.x + t), e2.y * p.y / (e2.y + t), e2.z * p.z / (e2.z + t))
+}
+
+/// Summary of a set of distances.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct DistanceStats {
+    pub count: usize,
+    pub min: f64,
+    pub max: f64,
+    pub mean: f64,
+    pub rms: f64,
+}
+
+impl DistanceStats {
+    pub fn of(values: impl IntoIterator<Item = f64>) -> Self {
+        let (mut n, mut min, mut max, mut sum, mut sq) = (0usize, f64::INFINITY, 0.0f64, 0.0, 0.0);
+        for v in values {
+            n += 1;
+            min = min.min(v);
+            max = max.max(v);
+            sum += v;
+            sq += v * v;
+        }
+        if n == 0 {
+            return Self::default();
+        }
+        DistanceStats { count: n, min, max, mean: sum / n as f64, rms: (sq / n as f64).sqrt() }
+    }
+}
+
+/// Distances of the vertices `first..` (the free vertices when `first` is the number of curve
+/// vertices, as in [CG] Table 1) to `truth`.
+pub fn distance_to_truth(positions: &[DVec3], first: usize, truth: &Truth) -> DistanceStats {
+    DistanceStats::of(positions[first.min(positions.len())..].iter().map(|p| truth.distance(*p)))
+}
+
+/// Angles in degrees between `normals` and the true normals, over vertices `first..`.
+pub fn normal_angles_to_truth(positions: &[DVec3], normals: &[DVec3], first: usize, truth: &Truth) -> DistanceStats {
+    DistanceStats::of(
+        (first.min(positions.len())..positions.len())
+            .map(|i| normals[i].dot(truth.normal(positions[i])).clamp(-1.0, 1.0).acos().to_degrees()),
+    )
+}
+
+/// Closest point to `p` on the triangle `abc` (Ericson, *Real-Time Collision Detection*,
+/// §5.1.5).
+pub fn closest_point_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    a + ab * (vb * denom) + ac * (vc * denom)
+}
+
+/// Closest point to `p` on the segment `ab`.
+pub fn closest_point_on_segment(p: DVec3, a: DVec3, b: DVec3) -> DVec3 {
+    let d = b - a;
+    let l2 = d.length_squared();
+    if l2 == 0.0 {
+        return a;
+    }
+    a + d * ((p - a).dot(d) / l2).clamp(0.0, 1.0)
+}
+
+/// Exact point-to-mesh distance queries over a bounding volume hierarchy of the triangles
+/// (median splits along the longest axis, leaves of up to 4 triangles).
+pub struct MeshDistance<'a> {
+    positions: &'a [DVec3],
+    faces: &'a [[u32; 3]],
+    nodes: Vec<BvhNode>,
+    order: Vec<u32>,
+}
+
+struct BvhNode {
+    bounds: crate::geom::Aabb,
+    /// Leaf: range of `order` (`count > 0`); inner node: its two children.
+    start: u32,
+    count: u32,
+    children: [u32; 2],
+}
+
+fn box_distance_sq(b: &crate::geom::Aabb, p: DVec3) -> f64 {
+    let d = (b.min - p).max(p - b.max).max(DVec3::ZERO);
+    d.length_squared()
+}
+
+impl<'a> MeshDistance<'a> {
+    pub fn new(positions: &'a [DVec3], faces: &'a [[u32; 3]]) -> Self {
+        let tri_box = |f: &[u32; 3]| crate::geom::Aabb::of(f.iter().map(|&i| positions[i as usize]));
+        let boxes: Vec<crate::geom::Aabb> = faces.iter().map(tri_box).collect();
+        let centers: Vec<DVec3> = boxes.iter().map(|b| b.center()).collect();
+        let mut me = MeshDistance { positions, faces, nodes: Vec::new(), order: (0..faces.len() as u32).collect() };
+        if !faces.is_empty() {
+            me.build(0, faces.len(), &boxes, &centers);
+        }
+        me
+    }
+
+    fn build(&mut self, start: usize, end: usize, boxes: &[crate::geom::Aabb], centers: &[DVec3]) -> u32 {
+        let mut bounds = crate::geom::Aabb::empty();
+        for &t in &self.order[start..end] {
+            bounds.extend(boxes[t as usize].min);
+            bounds.extend(boxes[t as usize].max);
+        }
+        let id = self.nodes.len() as u32;
+        self.nodes.push(BvhNode { bounds, start: start as u32, count: (end - start) as u32, children: [0; 2] });
+        if end - start <= 4 {
+            return id;
+        }
+        let ext = bounds.max - bounds.min;
+        let axis = if ext.x >= ext.y && ext.x >= ext.z {
+            0
+        } else if ext.y >= ext.z {
+            1
+        } else {
+            2
+        };
+        let mid = (start + end) / 2;
+        self.order[start..end].select_nth_unstable_by(mid - start, |&a, &b| {
+            centers[a as usize][axis].total_cmp(&centers[b as usize][axis])
+        });
+        let left = self.build(start, mid, boxes, centers);
+        let right = self.build(mid, end, boxes, centers);
+        let node = &mut self.nodes[id as usize];
+        node.count = 0;
+        node.children = [left, right];
+        id
+    }
+
+    /// Distance from `p` to the mesh, the closest point and the index of its face.
+    pub fn closest_face(&self, p: DVec3) -> (f64, DVec3, usize) {
+        let mut best = (f64::INFINITY, p, usize::MAX);
+        if self.nodes.is_empty() {
+            return best;
+        }
+        let mut stack = vec![0u32];
+        while let Some(id) = stack.pop() {
+            let node = &self.nodes[id as usize];
+            if box_distance_sq(&node.bounds, p) >= best.0 * best.0 {
+                continue;
+            }
+            if node.count > 0 {
+                for &t in &self.order[node.start as usize..(node.start + node.count) as usize] {
+                    let f = self.faces[t as usize];
+                    let [a, b, c] = f.map(|i| self.positions[i as usize]);
+                    // A "triangle" whose last two corners agree is a segment (polyline queries).
+                    let q = if f[1] == f[2] {
+                        closest_point_on_segment(p, a, b)
+                    } else {
+                        closest_point_on_triangle(p, a, b, c)
+                    };
+                    let d = p.distance(q);
+                    if d < best.0 {
+                        best = (d, q, t as usize);
+                    }
+                }
+            } else {
+                // Visit the nearer child first.
+                let [l, r] = node.children;
+                let (dl, dr) = (
+                    box_distance_sq(&self.nodes[l as usize].bounds, p),
+                    box_distance_sq(&self.nodes[r as usize].bounds, p),
+                );
+                if dl <= dr {
+                    stack.push(r);
+                    stack.push(l);
+                } else {
+                    stack.push(l);
+                    stack.push(r);
+                }
+            }
+        }
+        best
+    }
+
+    /// Distance from `p` to the mesh and the closest point.
+    pub fn closest(&self, p: DVec3) -> (f64, DVec3) {
+        let (d, q, _) = self.closest_face(p);
+        (d, q)
+    }
+}
+
+/// A ground truth: an analytic surface or a reference mesh.
+#[derive(Clone, Copy, Debug)]
+pub enum Reference<'a> {
+    Analytic(Truth),
+    Mesh { positions: &'a [DVec3], faces: &'a [[u32; 3]] },
+}
+
+/// What [`evaluate`] measured ([CG] §4.3, Fig. 5). Angles in degrees.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct Evaluation {
+    /// Vertices evaluated (the free ones) and excluded (on the curves).
+    pub vertices: usize,
+    pub excluded: usize,
+    /// Distances of the evaluated vertices to the truth.
+    pub distance: DistanceStats,
+    /// Distances of the reference mesh's vertices to the mesh (reference meshes only).
+    pub reverse: Option<DistanceStats>,
+    /// Symmetric Hausdorff distance, vertex-sampled (reference meshes only).
+    pub hausdorff: Option<f64>,
+    /// Angle between the mesh's vertex normals and the truth's normals.
+    pub normal_angle: DistanceStats,
+    /// Angle between the propagated normals `N*` and the mesh's normals, when known.
+    pub propagated_deviation: Option<DistanceStats>,
+}
+
+/// Measures a mesh against a ground truth over its vertices not flagged in `exclude` (the
+/// curve vertices, as in [CG] Table 1). `normals`: the mesh's vertex normals (computed from
+/// the faces when `None`); `propagated`: the propagated normals `N*`, if known.
+pub fn evaluate(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    normals: Option<&[DVec3]>,
+    exclude: &[bool],
+    reference: Reference<'_>,
+    propagated: Option<&[DVec3]>,
+) -> Evaluation {
+    let computed;
+    let normals = match normals {
+        Some(n) => n,
+        None => {
+            computed = crate::operators::vertex_normals(faces, positions);
+            &computed
+        }
+    };
+    let free: Vec<usize> = (0..positions.len()).filter(|&i| !exclude.get(i).copied().unwrap_or(false)).collect();
+    let angle = |a: DVec3, b: DVec3| a.dot(b).clamp(-1.0, 1.0).acos().to_degrees();
+    let mut e = Evaluation { vertices: free.len(), excluded: positions.len() - free.len(), ..Default::default() };
+    match reference {
+        Reference::Analytic(truth) => {
+            e.distance = DistanceStats::of(free.iter().map(|&i| truth.distance(positions[i])));
+            e.normal_angle = DistanceStats::of(free.iter().map(|&i| angle(normals[i], truth.normal(positions[i]))));
+        }
+        Reference::Mesh { positions: rp, faces: rf } => {
+            let to_ref = MeshDistance::new(rp, rf);
+            let face_normal = |f: usize| {
+                let [a, b, c] = rf[f].map(|i| rp[i as usize]);
+                (b - a).cross(c - a).normalize_or_zero()
+            };
+            let hits: Vec<(f64, DVec3, usize)> = free.iter().map(|&i| to_ref.closest_face(positions[i])).collect();
+            e.distance = DistanceStats::of(hits.iter().map(|h| h.0));
+            e.normal_angle = DistanceStats::of(
+                free.iter()
+                    .zip(&hits)
+                    .filter(|(_, h)| h.2 != usize::MAX)
+                    .map(|(&i, h)| angle(normals[i], face_normal(h.2))),
+            );
+            let to_mesh = MeshDistance::new(positions, faces);
+            let reverse = DistanceStats::of(rp.iter().map(|p| to_mesh.closest(*p).0));
+            e.hausdorff = Some(reverse.max.max(e.distance.max));
+            e.reverse = Some(reverse);
+        }
+    }
+    e.propagated_deviation =
+        propagated.map(|pn| DistanceStats::of(free.iter().map(|&i| angle(pn[i].normalize_or_zero(), normals[i]))));
+    e
+}
+
+/// Flags the vertices lying within `tolerance` of the network's curves (its polylines).
+pub fn near_curves(positions: &[DVec3], network: &crate::network::Network, tolerance: f64) -> Vec<bool> {
+    let mut pts = Vec::new();
+    let mut segs = Vec::new();
+    for c in &network.curves {
+        let base = pts.len() as u32;
+        pts.extend_from_slice(&c.points);
+        let n = c.points.len() as u32;
+        let m = if c.closed { n } else { n.saturating_sub(1) };
+        for k in 0..m {
+            let (a, b) = (base + k, base + (k + 1) % n);
+            segs.push([a, b, b]);
+        }
+    }
+    let bvh = MeshDistance::new(&pts, &segs);
+    positions.iter().map(|p| bvh.closest(*p).0 <= tolerance).collect()
+}
+
+/// The analytic surface the example `name` samples, where there is one.
+pub fn example_truth(name: &str) -> Option<Truth> {
+    Some(match name {
+        "sphere" | "globe" | "cube" => Truth::Sphere { center: DVec3::ZERO, radius: 1.0 },
+        "torus" => Truth::Torus { major: 4.0, minor: 2.0 },
+        "cylinder" => Truth::Cylinder { radius: 1.0 },
+        "saddle" => Truth::Saddle,
+        _ => return None,
+    })
+}
+
+#[cfg(test)]
+#[path = "tests/metrics.rs"]
+mod tests;

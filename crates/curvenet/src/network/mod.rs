@@ -1,0 +1,332 @@
+//! The input model: a network of 3D curves sampled with positions and surface normals
+//! ([CG] §3: "a discrete sample of positions pᵢ together with the unit surface normals nᵢ").
+//!
+//! A [`Network`] is what the readers in [`crate::io`] produce and what the examples in
+//! [`crate::network::examples`] build. [`Network::validated`] checks it at the door and returns a
+//! cleaned copy (unit normals, no repeated samples) that the pipeline works on.
+
+pub mod edit;
+pub mod examples;
+
+use crate::error::{Error, Result, Warning};
+use crate::geom::{fmt_point, Aabb, DVec3};
+
+/// One sampled curve.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Curve {
+    /// Optional name, used in messages.
+    pub name: Option<String>,
+    /// Sample positions, in order along the curve (≥ 2; ≥ 3 when `closed`).
+    pub points: Vec<DVec3>,
+    /// Surface normals at the samples, same length as `points`; non-zero, need not be unit.
+    /// They point to the outside of the surface (the side the user sees).
+    pub normals: Vec<DVec3>,
+    /// The last sample connects back to the first.
+    pub closed: bool,
+    /// The curve bounds the surface: it has a patch on one side only.
+    pub boundary: bool,
+}
+
+/// A curve network: curves that meet at nodes and bound the patches of the surface.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Network {
+    pub curves: Vec<Curve>,
+    /// Snapping tolerance (a distance): two curves closer than this meet at a node. `None`
+    /// uses [`Network::DEFAULT_SNAP_RELATIVE`] times the bounding-box diagonal.
+    pub snap: Option<f64>,
+}
+
+/// Human-readable name of curve `index` for messages: `curve 3 ("equator")`.
+pub fn curve_label(curves: &[Curve], index: usize) -> String {
+    match curves.get(index).and_then(|c| c.name.as_deref()) {
+        Some(name) => format!("curve {index} (\"{name}\")"),
+        None => format!("curve {index}"),
+    }
+}
+
+impl Network {
+    /// Default snapping tolerance relative to the bounding-box diagonal.
+    pub const DEFAULT_SNAP_RELATIVE: f64 = 1e-3;
+    /// Default snapping tolerance relative to the mean sample spacing.
+    pub const DEFAULT_SNAP_SPACING: f64 = 0.1;
+    /// Samples closer than this (relative to the bounding-box diagonal) are duplicates.
+    pub const DUPLICATE_RELATIVE: f64 = 1e-9;
+    /// Largest supported coordinate magnitude and bounding-box diagonal, and (its inverse) the
+    /// smallest supported diagonal. The pipeline is scale invariant, but it forms squared
+    /// lengths, areas and the fourth power of a patch size (the short paper's `ω₁ = W / s⁴`):
+    /// within `1e±60` none of them over- or underflows an `f64`.
+    pub const MAX_EXTENT: f64 = 1e60;
+    /// Largest supported ratio of the distance from the origin to the bounding-box diagonal:
+    /// beyond it an `f64` keeps fewer than about 7 significant digits of the shape.
+    pub const MAX_OFFSET_RATIO: f64 = 1e9;
+    /// A normal within this cosine of the curve's direction on both sides of its sample
+    /// (about 11°) is tangent to the curve: it defines no side of the surface.
+    pub const TANGENT_NORMAL_COSINE: f64 = 0.98;
+
+    /// Bounding box of all samples.
+    pub fn bounding_box(&self) -> Aabb {
+        Aabb::of(self.curves.iter().flat_map(|c| c.points.iter().copied()))
+    }
+
+    /// The snapping tolerance in effect: `snap`, or the larger of
+    /// [`Network::DEFAULT_SNAP_RELATIVE`] × the bounding-box diagonal and
+    /// [`Network::DEFAULT_SNAP_SPACING`] × the mean sample spacing (sparsely sampled or noisy
+    /// curves cross between samples at a distance that grows with the spacing).
+    pub fn snap_tolerance(&self) -> f64 {
+        self.snap.unwrap_or_else(|| {
+            (Self::DEFAULT_SNAP_RELATIVE * self.bounding_box().diagonal())
+                .max(Self::DEFAULT_SNAP_SPACING * self.mean_sample_spacing())
+        })
+    }
+
+    /// Total number of samples.
+    pub fn num_samples(&self) -> usize {
+        self.curves.iter().map(|c| c.points.len()).sum()
+    }
+
+    /// Mean distance between consecutive samples over all curves.
+    pub fn mean_sample_spacing(&self) -> f64 {
+        let (mut sum, mut count) = (0.0, 0usize);
+        for c in &self.curves {
+            let n = c.points.len();
+            let m = if c.closed { n } else { n.saturating_sub(1) };
+            for i in 0..m {
+                sum += c.points[i].distance(c.points[(i + 1) % n]);
+                count += 1;
+            }
+        }
+        if count > 0 {
+            sum / count as f64
+        } else {
+            0.0
+        }
+    }
+
+    /// A copy with sensor-like noise ([CG] §4.5, Fig. 7): Gaussian noise of standard deviation
+    /// `fraction × spacing` on the positions (`spacing` the mean sample spacing) and a
+    /// Gaussian perturbation of standard deviation `fraction` on the unit normals, which are then
+    /// re-normalised. Samples that coincide (crossings sampled by both curves) receive the same
+    /// perturbation, so curves that met still meet. Deterministic for a given `seed`.
+    pub fn perturbed(&self, fraction: f64, seed: u64) -> Network {
+        let sigma = fraction * self.mean_sample_spacing();
+        let mut rng = Rng::new(seed);
+        let mut shared: std::collections::HashMap<[u64; 3], (DVec3, DVec3)> = std::collections::HashMap::new();
+        let mut out = self.clone();
+        for c in &mut out.curves {
+            for (p, n) in c.points.iter_mut().zip(c.normals.iter_mut()) {
+                // Key by position rounded to 1e-9 of the spacing, so coincident samples share it.
+                // (+ 0.0 turns −0 into +0, so that both round to the same key.)
+                let q = (*p / (1e-9 * sigma.max(f64::MIN_POSITIVE))).round() + DVec3::ZERO;
+                let key = [q.x.to_bits(), q.y.to_bits(), q.z.to_bits()];
+                let (dp, dn) =
+                    *shared.entry(key).or_insert_with(|| (rng.gaussian3() * sigma, rng.gaussian3() * fraction));
+                *p += dp;
+                let m = n.normalize_or_zero() + dn;
+                *n = if m.length() > 1e-6 { m.normalize() } else { *n };
+            }
+        }
+        out
+    }
+
+    /// Checks the network and returns a cleaned copy: unit normals, consecutive duplicate
+    /// samples merged (each merge is reported as a warning), a closed curve's repeated first
+    /// sample dropped.
+    ///
+    /// Errors ([`Error::Input`]), each naming the curve and sample: no curves; `points` and
+    /// `normals` of different lengths; a non-finite coordinate; a zero or non-normalisable
+    /// normal; fewer than 2 distinct samples (3 for a closed curve); all samples coincident;
+    /// a snapping tolerance that is not a positive number; coordinates or an extent outside
+    /// [`Network::MAX_EXTENT`]; a network far from the origin compared with its size
+    /// ([`Network::MAX_OFFSET_RATIO`]); a normal tangent to its curve
+    /// ([`Network::TANGENT_NORMAL_COSINE`]).
+    pub fn validated(&self) -> Result<(Network, Vec<Warning>)> {
+        let mut warnings = Vec::new();
+        if self.curves.is_empty() {
+            return Err(Error::Input(
+                "the network has no curves: give at least one curve with points and normals".into(),
+            ));
+        }
+        for (ci, c) in self.curves.iter().enumerate() {
+            let label = || curve_label(&self.curves, ci);
+            if c.points.len() != c.normals.len() {
+                return Err(Error::Input(format!(
+                    "{}: {} points but {} normals; every point needs one normal, in the same order",
+                    label(),
+                    c.points.len(),
+                    c.normals.len()
+                )));
+            }
+            let need = if c.closed { 3 } else { 2 };
+            if c.points.len() < need {
+                return Err(Error::Input(format!(
+                    "{} has {} sample(s); a{} curve needs at least {need}",
+                    label(),
+                    c.points.len(),
+                    if c.closed { " closed" } else { "n open" }
+                )));
+            }
+            for (si, p) in c.points.iter().enumerate() {
+                if !p.is_finite() {
+                    return Err(Error::Input(format!(
+                        "{}, sample {si}: point {} has a non-finite coordinate",
+                        label(),
+                        fmt_point(*p)
+                    )));
+                }
+            }
+            for (si, n) in c.normals.iter().enumerate() {
+                let u = n.normalize_or_zero();
+                if !n.is_finite() || u == DVec3::ZERO || !u.is_finite() {
+                    return Err(Error::Input(format!(
+                        "{}, sample {si}: normal {} cannot be normalised; every sample needs a \
+                         finite, non-zero normal pointing to the outside of the surface",
+                        label(),
+                        fmt_point(*n)
+                    )));
+                }
+            }
+        }
+        if let Some(s) = self.snap {
+            if !(s.is_finite() && s > 0.0) {
+                return Err(Error::Input(format!(
+                    "snapping tolerance {s} is not a positive number; give a distance such as 1e-6 or leave it out"
+                )));
+            }
+        }
+        let bbox = self.bounding_box();
+        // (The diagonal underflows to 0 for extents below 1e-154: test the spread itself.)
+        let diag = bbox.diagonal().max((bbox.max - bbox.min).max_element());
+        if !(diag > 0.0) {
+            return Err(Error::Input("all samples of the network coincide: there is nothing to surface".into()));
+        }
+        let far = bbox.min.abs().max(bbox.max.abs()).max_element();
+        if !(far <= Self::MAX_EXTENT && diag <= Self::MAX_EXTENT && diag >= 1.0 / Self::MAX_EXTENT) {
+            return Err(Error::Input(format!(
+                "the network's coordinates (largest magnitude {far:.3e}, bounding-box diagonal {diag:.3e}) are \
+                 outside the supported range [{:.0e}, {:.0e}]; rescale the network (the result scales with it)",
+                1.0 / Self::MAX_EXTENT,
+                Self::MAX_EXTENT
+            )));
+        }
+        if far > Self::MAX_OFFSET_RATIO * diag {
+            return Err(Error::Input(format!(
+                "the network lies {far:.3e} from the origin but is only {diag:.3e} across: too few significant \
+                 digits are left of its shape; translate it towards the origin"
+            )));
+        }
+        let dup_tol = Self::DUPLICATE_RELATIVE * diag;
+
+        let mut curves = Vec::with_capacity(self.curves.len());
+        for (ci, c) in self.curves.iter().enumerate() {
+            let label = curve_label(&self.curves, ci);
+            let mut points: Vec<DVec3> = Vec::with_capacity(c.points.len());
+            let mut normals: Vec<DVec3> = Vec::with_capacity(c.points.len());
+            let mut merged = Vec::new();
+            for (si, (p, n)) in c.points.iter().zip(&c.normals).enumerate() {
+                if let Some(last) = points.last() {
+                    if last.distance(*p) <= dup_tol {
+                        merged.push(si);
+                        continue;
+                    }
+                }
+                points.push(*p);
+                normals.push(n.normalize());
+            }
+            if !merged.is_empty() {
+                let list: Vec<String> = merged.iter().take(5).map(|s| s.to_string()).collect();
+                warnings.push(Warning(format!(
+                    "{label}: {} sample(s) repeated the previous one and were merged (sample {}{})",
+                    merged.len(),
+                    list.join(", "),
+                    if merged.len() > 5 { ", …" } else { "" }
+                )));
+            }
+            if c.closed && points.len() > 1 && points[0].distance(points[points.len() - 1]) <= dup_tol {
+                points.pop();
+                normals.pop();
+                warnings.push(Warning(format!(
+                    "{label}: closed curve repeats its first sample at the end; the repeat was dropped"
+                )));
+            }
+            let need = if c.closed { 3 } else { 2 };
+            if points.len() < need {
+                return Err(Error::Input(format!(
+                    "{label} has {} distinct sample(s); a{} curve needs at least {need}",
+                    points.len(),
+                    if c.closed { " closed" } else { "n open" }
+                )));
+            }
+            if let Some(si) = tangent_normal(&points, &normals, c.closed) {
+                return Err(Error::Input(format!(
+                    "{label}, sample {si}: normal {} is tangent to the curve (within {:.0}° of its direction); \
+                     normals must be across the curve, pointing to the outside of the surface",
+                    fmt_point(normals[si]),
+                    Self::TANGENT_NORMAL_COSINE.acos().to_degrees()
+                )));
+            }
+            curves.push(Curve { name: c.name.clone(), points, normals, closed: c.closed, boundary: c.boundary });
+        }
+        Ok((Network { curves, snap: self.snap }, warnings))
+    }
+}
+
+/// The first sample whose unit normal lies within [`Network::TANGENT_NORMAL_COSINE`] of the
+/// curve's direction on both sides of it (on the one side at the ends of an open curve).
+fn tangent_normal(points: &[DVec3], normals: &[DVec3], closed: bool) -> Option<usize> {
+    let n = points.len();
+    let chord = |i: usize, j: usize| (points[j] - points[i]).normalize_or_zero();
+    (0..n).find(|&i| {
+        let before = if i > 0 {
+            Some(chord(i - 1, i))
+        } else if closed {
+            Some(chord(n - 1, 0))
+        } else {
+            None
+        };
+        let after = if i + 1 < n {
+            Some(chord(i, i + 1))
+        } else if closed {
+            Some(chord(n - 1, 0))
+        } else {
+            None
+        };
+        let along = |c: Option<DVec3>| c.is_none_or(|c| normals[i].dot(c).abs() > Network::TANGENT_NORMAL_COSINE);
+        (before.is_some() || after.is_some()) && along(before) && along(after)
+    })
+}
+
+/// A small deterministic generator (SplitMix64) with Gaussian samples (Box–Muller), so that
+/// noisy test networks are reproducible without a dependency.
+pub(crate) struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed ^ 0x9E37_79B9_7F4A_7C15)
+    }
+
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in (0, 1).
+    pub fn uniform(&mut self) -> f64 {
+        ((self.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+
+    pub fn gaussian(&mut self) -> f64 {
+        let (u, v) = (self.uniform(), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    }
+
+    pub fn gaussian3(&mut self) -> DVec3 {
+        DVec3::new(self.gaussian(), self.gaussian(), self.gaussian())
+    }
+}
+
+#[cfg(test)]
+#[path = "tests/network.rs"]
+mod tests;

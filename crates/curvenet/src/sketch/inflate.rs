@@ -1,0 +1,362 @@
+//! Sketch inflation ([A11] §5): the outlines of an SVG sketch are sampled, the region inside
+//! the outermost closed outline triangulated (constrained Delaunay with quality refinement,
+//! spade — [A11] used Triangle), and inflated by the order-k system with Cauchy constraints on
+//! the outline.
+//!
+//! - **Outline** (the closed path of largest area; every other path must lie inside it): Cauchy
+//!   constraints whose orientation is the sketch normal `+z` tilted outwards by `angle`
+//!   (default 90°: a balloon whose rim leaves the plane vertically), with the sketch plane as
+//!   the initial domain (`O` of [A11] eq. 3 rotates `+z` onto the orientation).
+//! - **Inner paths**: inactive constraints by default (they ride on the inflated surface,
+//!   [A11] §5.1). A path with `class="crease"` (or `data-kind="crease"`) is then *activated*:
+//!   fixed where the inflated surface carried it, oriented by that surface's normal, with the
+//!   sharpness `data-sharpness` (degrees; default [`InflateOptions::crease_sharpness`]; > 0 a
+//!   ridge, < 0 a valley), and the surface solved again — the workflow of [A11] Fig. 5.
+
+use crate::methods::andrews2011::params::CauchyParams;
+use super::svg::SketchPath;
+use crate::methods::andrews2011::system::{MicroWeight, Role, Stencil, System};
+use crate::error::{Error, Result};
+use crate::geom::{polygon_signed_area, DVec2, DVec3};
+use crate::geom::mesh::Mesh;
+use crate::operators::{cotan_operators, vertex_normals, Metric};
+use spade::{AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation};
+
+/// Options of [`inflate`] (one per `curvenet inflate` flag).
+#[derive(Clone, Debug, PartialEq)]
+pub struct InflateOptions {
+    /// Laplacian order `k` (1–3). Default 2 ([A11] §5 used `k = 2`).
+    pub order: usize,
+    /// Tilt of the outline's orientation out of the sketch plane, degrees (90: vertical rim).
+    pub angle: f64,
+    /// Stretch of the outline's constraints (dimensionless: the rim's tangent magnitude is
+    /// multiplied by `1 + stretch`).
+    pub stretch: f64,
+    /// Sharpness of crease paths without `data-sharpness`, degrees.
+    pub crease_sharpness: f64,
+    /// Approximate number of vertices.
+    pub vertices: usize,
+    /// Re-solves with centred ghosts (see [`System::solve_with_updates`]).
+    pub ghost_updates: usize,
+}
+
+impl Default for InflateOptions {
+    fn default() -> Self {
+        InflateOptions {
+            order: 2,
+            angle: 90.0,
+            stretch: 0.0,
+            crease_sharpness: 30.0,
+            vertices: 5000,
+            ghost_updates: 10,
+        }
+    }
+}
+
+/// An inflated sketch.
+#[derive(Clone, Debug)]
+pub struct Inflated {
+    pub positions: Vec<DVec3>,
+    pub faces: Vec<[u32; 3]>,
+    /// Per vertex: on a sketch path.
+    pub on_path: Vec<bool>,
+    /// Height of the surface above the sketch plane (max z).
+    pub height: f64,
+    /// Radius of the circle with the outline's area, `√(A/π)`.
+    pub radius: f64,
+    /// Number of crease paths activated.
+    pub creases: usize,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum PathKind {
+    Outline,
+    Inactive,
+    Crease,
+}
+
+fn point_in_polygon(p: DVec2, poly: &[DVec2]) -> bool {
+    let mut inside = false;
+    let n = poly.len();
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// Resamples a polyline at about `d` (uniform in arc length; closed lines wrap).
+fn resample(points: &[DVec2], closed: bool, d: f64) -> Vec<DVec2> {
+    let mut pts = points.to_vec();
+    if closed {
+        pts.push(points[0]);
+    }
+    // Cumulative arc length at each point.
+    let mut acc = Vec::with_capacity(pts.len());
+    let mut total = 0.0;
+    acc.push(0.0);
+    for w in pts.windows(2) {
+        total += w[0].distance(w[1]);
+        acc.push(total);
+    }
+    let n = ((total / d).round() as usize).max(if closed { 3 } else { 1 });
+    let count = if closed { n } else { n + 1 };
+    (0..count)
+        .map(|k| {
+            let s = total * k as f64 / n as f64;
+            let i = (acc.partition_point(|&a| a <= s).max(1) - 1).min(pts.len() - 2);
+            let t = ((s - acc[i]) / (acc[i + 1] - acc[i]).max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+            pts[i].lerp(pts[i + 1], t)
+        })
+        .collect()
+}
+
+/// Inflates a sketch's outlines (see the module docs).
+pub fn inflate(paths: &[SketchPath], o: &InflateOptions) -> Result<Inflated> {
+    if !(1..=3).contains(&o.order) {
+        return Err(Error::Usage(format!("order {} is not 1, 2 or 3", o.order)));
+    }
+    if !(o.angle.is_finite() && o.angle.abs() <= 180.0) {
+        return Err(Error::Usage(format!("angle {} is not in [-180, 180] degrees", o.angle)));
+    }
+    if o.vertices < 50 {
+        return Err(Error::Usage(format!("{} vertices is too few (at least 50)", o.vertices)));
+    }
+    // The outline: the closed path of largest area, made counter-clockwise.
+    let outline = paths
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.closed && p.points.len() >= 3)
+        .max_by(|a, b| polygon_signed_area(&a.1.points).abs().total_cmp(&polygon_signed_area(&b.1.points).abs()))
+        .map(|(i, _)| i)
+        .ok_or_else(|| Error::Input("the sketch has no closed path to bound the surface".into()))?;
+    let mut outer = paths[outline].points.clone();
+    if polygon_signed_area(&outer) < 0.0 {
+        outer.reverse();
+    }
+    let area = polygon_signed_area(&outer);
+    if !(area > 0.0) {
+        return Err(Error::Input(format!("line {}: the outline encloses no area", paths[outline].line)));
+    }
+    let kinds: Vec<PathKind> = paths
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            if i == outline {
+                PathKind::Outline
+            } else if p.kind.as_deref() == Some("crease") || p.class.split_whitespace().any(|c| c == "crease") {
+                PathKind::Crease
+            } else {
+                PathKind::Inactive
+            }
+        })
+        .collect();
+    for (i, p) in paths.iter().enumerate() {
+        if i != outline && p.points.iter().any(|&q| !point_in_polygon(q, &outer)) {
+            return Err(Error::Input(format!(
+                "line {}: a path leaves the outline (line {}); every path must lie inside the closed outline",
+                p.line, paths[outline].line
+            )));
+        }
+    }
+    // Spacing for about `vertices` vertices.
+    let d = (crate::tessellate::VERTICES_PER_AREA * area / o.vertices as f64).sqrt();
+    let mut cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::new();
+    let mut sampled: Vec<(PathKind, Vec<spade::handles::FixedVertexHandle>, bool, usize, f64)> = Vec::new();
+    // Resample every path; the outline first, then the others. An open path's end within half
+    // a spacing of an earlier path's sample is snapped onto it, so that touching paths share
+    // the vertex (a vertex inside a constraint edge would split it behind our back).
+    let mut order: Vec<usize> = (0..paths.len()).collect();
+    order.sort_by_key(|&i| (i != outline, i));
+    let mut placed: Vec<DVec2> = Vec::new();
+    for i in order {
+        let p = &paths[i];
+        let pts = if i == outline { outer.clone() } else { p.points.clone() };
+        let mut r = resample(&pts, p.closed, d);
+        if !p.closed {
+            let last = r.len() - 1;
+            for k in [0, last] {
+                if let Some(q) = placed.iter().copied().min_by(|a, b| a.distance(r[k]).total_cmp(&b.distance(r[k]))) {
+                    if q.distance(r[k]) < 0.5 * d {
+                        r[k] = q;
+                    }
+                }
+            }
+        }
+        placed.extend_from_slice(&r);
+        let handles: Vec<_> = r
+            .iter()
+            .map(|q| cdt.insert(Point2::new(q.x, q.y)))
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|e| Error::Input(format!("line {}: a point cannot be triangulated ({e:?})", p.line)))?;
+        let m = handles.len();
+        let edges = if p.closed { m } else { m - 1 };
+        for k in 0..edges {
+            let (a, b) = (handles[k], handles[(k + 1) % m]);
+            if a == b {
+                continue;
+            }
+            if !cdt.can_add_constraint(a, b) {
+                return Err(Error::Input(format!(
+                    "line {}: the path crosses another path; paths may only touch at their samples",
+                    p.line
+                )));
+            }
+            cdt.add_constraint(a, b);
+        }
+        let sharp = p.sharpness.unwrap_or(o.crease_sharpness);
+        sampled.push((kinds[i], handles, p.closed, p.line, sharp));
+    }
+    let expected = (4.0 * area / (0.69 * d * d)) as usize + 10_000;
+    let result = cdt.refine(
+        RefinementParameters::<f64>::new()
+            .with_angle_limit(AngleLimit::from_deg(25.0))
+            .with_max_allowed_area(0.69 * d * d)
+            .keep_constraint_edges()
+            .with_max_additional_vertices(expected),
+    );
+    if !result.refinement_complete {
+        return Err(Error::Numerical(format!(
+            "the sketch's triangulation did not finish within {expected} new vertices"
+        )));
+    }
+    // Faces inside the outline, vertices renumbered.
+    let mut index = vec![u32::MAX; cdt.num_vertices()];
+    let mut pos2: Vec<DVec2> = Vec::new();
+    let mut faces: Vec<[u32; 3]> = Vec::new();
+    for f in cdt.inner_faces() {
+        let vs = f.vertices();
+        let p: Vec<DVec2> = vs.iter().map(|v| DVec2::new(v.position().x, v.position().y)).collect();
+        if !point_in_polygon((p[0] + p[1] + p[2]) / 3.0, &outer) {
+            continue;
+        }
+        let mut tri = [0u32; 3];
+        for k in 0..3 {
+            let h = vs[k].fix().index();
+            if index[h] == u32::MAX {
+                index[h] = pos2.len() as u32;
+                pos2.push(p[k]);
+            }
+            tri[k] = index[h];
+        }
+        faces.push(tri);
+    }
+    let n = pos2.len();
+    let positions: Vec<DVec3> = pos2.iter().map(|q| DVec3::new(q.x, q.y, 0.0)).collect();
+    let mesh = Mesh {
+        positions: positions.clone(),
+        planar: faces.iter().map(|f| [pos2[f[0] as usize], pos2[f[1] as usize], pos2[f[2] as usize]]).collect(),
+        face_patch: vec![0; faces.len()],
+        on_boundary: vec![false; n],
+        faces,
+        num_curve: 0,
+        curve_normals: Vec::new(),
+        ..Default::default()
+    };
+    let ops = cotan_operators(&mesh, Metric::Planar, &mesh.positions);
+    let stencil = Stencil::from_operators(&ops, positions.clone());
+    let mut roles = vec![Role::Free; n];
+    let mut params: Vec<Option<CauchyParams>> = vec![None; n];
+    let mut on_path = vec![false; n];
+    let angle = o.angle.to_radians();
+    for (kind, handles, closed, _, _) in &sampled {
+        let ids: Vec<u32> = handles.iter().map(|h| index[h.index()]).collect();
+        let m = ids.len();
+        for (k, &id) in ids.iter().enumerate() {
+            if id == u32::MAX {
+                continue;
+            }
+            on_path[id as usize] = true;
+            if *kind != PathKind::Outline {
+                continue;
+            }
+            let prev = ids[(k + m - 1) % m];
+            let next = ids[(k + 1) % m];
+            if prev == u32::MAX || next == u32::MAX || !*closed {
+                continue;
+            }
+            let t = (positions[next as usize] - positions[prev as usize]).normalize_or_zero();
+            // Counter-clockwise outline: outwards is the tangent turned clockwise.
+            let out = DVec3::new(t.y, -t.x, 0.0);
+            roles[id as usize] = Role::Cauchy;
+            params[id as usize] = Some(CauchyParams {
+                orientation: angle.cos() * DVec3::Z + angle.sin() * out,
+                initial_normal: Some(DVec3::Z),
+                sharpness: 0.0,
+                stretch: o.stretch,
+                tangent: Some(t),
+            });
+        }
+    }
+    let solve = |roles: &[Role], params: &[Option<CauchyParams>], fixed: &[DVec3]| -> Result<Vec<DVec3>> {
+        let system = System::build(&stencil, roles, o.order, MicroWeight::Consistent)?;
+        let offsets: Vec<DVec3> = system
+            .ghosts
+            .iter()
+            .map(|g| {
+                let e = positions[g.vertex as usize] - positions[g.source as usize];
+                params[g.vertex as usize].map_or(e, |p| p.ghost_offset(e))
+            })
+            .collect();
+        let f = system.factor()?;
+        system.solve_with_updates(&f, fixed, &offsets, o.ghost_updates)
+    };
+    let mut result = solve(&roles, &params, &positions)?;
+    // Activate the creases on the inflated surface ([A11] §5.1).
+    let mut creases = 0;
+    if sampled.iter().any(|s| s.0 == PathKind::Crease) {
+        let faces = &mesh.faces;
+        let normals = vertex_normals(faces, &result);
+        for (kind, handles, closed, _, sharp) in &sampled {
+            if *kind != PathKind::Crease {
+                continue;
+            }
+            creases += 1;
+            let ids: Vec<u32> = handles.iter().map(|h| index[h.index()]).collect();
+            let m = ids.len();
+            for (k, &id) in ids.iter().enumerate() {
+                if id == u32::MAX || roles[id as usize] == Role::Cauchy {
+                    continue;
+                }
+                let a = if k > 0 || *closed { ids[(k + m - 1) % m] } else { id };
+                let b = if k + 1 < m || *closed { ids[(k + 1) % m] } else { id };
+                let t = (result[b as usize] - result[a as usize]).normalize_or_zero();
+                roles[id as usize] = Role::Cauchy;
+                let n0 = normals[id as usize];
+                params[id as usize] = Some(CauchyParams {
+                    orientation: n0,
+                    initial_normal: Some(DVec3::Z),
+                    sharpness: sharp.to_radians(),
+                    stretch: 0.0,
+                    tangent: Some(t),
+                });
+            }
+        }
+        result = solve(&roles, &params, &result)?;
+    }
+    let height = result.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+    Ok(Inflated {
+        positions: result,
+        faces: mesh.faces.clone(),
+        on_path,
+        height,
+        radius: (area / std::f64::consts::PI).sqrt(),
+        creases,
+    })
+}
+
+/// Reads the outlines of an SVG file, flattened to chords of 1/1000 of the sketch's size.
+pub fn read_sketch(path: &std::path::Path) -> Result<Vec<SketchPath>> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.display().to_string(), source: e })?;
+    let source = path.display().to_string();
+    // A coarse pass for the size, then the flattening at a chord relative to it.
+    let coarse = super::svg::read_svg(&text, &source, f64::INFINITY)?;
+    let bb = crate::geom::Aabb::of(coarse.iter().flat_map(|p| p.points.iter().map(|q| DVec3::new(q.x, q.y, 0.0))));
+    let size = bb.diagonal();
+    if !(size > 0.0 && size.is_finite()) {
+        return Err(Error::Input(format!("{source}: the sketch has no extent")));
+    }
+    super::svg::read_svg(&text, &source, size / 1000.0)
+}
