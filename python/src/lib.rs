@@ -279,7 +279,7 @@ fn result<'py>(py: Python<'py>, s: curvenet::Surface) -> PyResult<Bound<'py, pyo
     let info = PyDict::new(py);
     let stats = serde_json::to_string(&s.stats).map_err(|e| usage(e.to_string()))?;
     info.set_item("stats_json", stats)?;
-    info.set_item("warnings", s.warnings.iter().map(|w| w.0.clone()).collect::<Vec<_>>())?;
+    info.set_item("warnings", s.warnings.iter().map(|w| w.message.clone()).collect::<Vec<_>>())?;
     info.set_item("num_curve", s.mesh.num_curve)?;
     info.set_item("curve", Array1::from(s.curve_flags.clone()).into_pyarray(py))?;
     info.set_item("normals", to_array(&s.normals).into_pyarray(py))?;

@@ -59,7 +59,7 @@ pub fn run(a: &BenchArgs) -> Result<(), Error> {
     std::fs::create_dir_all(&dir).map_err(|e| Error::Io { path: dir.display().to_string(), source: e })?;
     let mut rows = Vec::new();
     for name in &a.networks {
-        let net = examples::example(name).ok_or_else(|| Error::Usage(format!("unknown example \"{name}\"")))?;
+        let net = examples::example(name).ok_or_else(|| Error::usage(format!("unknown example \"{name}\"")))?;
         let input = dir.join(format!("{name}.json"));
         write_network(&input, &net)?;
         for &size in &a.sizes {
@@ -78,20 +78,20 @@ pub fn run(a: &BenchArgs) -> Result<(), Error> {
                             cmd.arg("--fast");
                         }
                         "default" => {}
-                        other => return Err(Error::Usage(format!("unknown mode \"{other}\" (fast, default)"))),
+                        other => return Err(Error::usage(format!("unknown mode \"{other}\" (fast, default)"))),
                     }
                     let clock = Instant::now();
                     let out = cmd.output().map_err(|e| Error::Io { path: exe.display().to_string(), source: e })?;
                     let wall = clock.elapsed().as_secs_f64();
                     if !out.status.success() {
-                        return Err(Error::Numerical(format!(
+                        return Err(Error::numerical(format!(
                             "benchmark run failed ({name}, {size}, {mode}): {}",
                             String::from_utf8_lossy(&out.stderr)
                         )));
                     }
                     let text = std::fs::read_to_string(&stats)
                         .map_err(|e| Error::Io { path: stats.display().to_string(), source: e })?;
-                    let s: serde_json::Value = serde_json::from_str(&text).map_err(|e| Error::Usage(e.to_string()))?;
+                    let s: serde_json::Value = serde_json::from_str(&text).map_err(|e| Error::usage(e.to_string()))?;
                     for (k, st) in STAGES.iter().enumerate() {
                         stages[k].push(s["timings"][st].as_f64().unwrap_or(0.0));
                     }

@@ -19,7 +19,7 @@ pub struct DemoArgs {
 
 pub fn run(a: &DemoArgs) -> Result<(), Error> {
     std::fs::create_dir_all(&a.out).map_err(|e| Error::Io { path: a.out.display().to_string(), source: e })?;
-    let net = examples::example("sphere").ok_or_else(|| Error::Usage("sphere example missing".into()))?;
+    let net = examples::example("sphere").ok_or_else(|| Error::usage("sphere example missing"))?;
     let network_path = a.out.join("sphere.json");
     let mesh_path = a.out.join("sphere.ply");
     write_network(&network_path, &net)?;

@@ -36,7 +36,7 @@ pub fn run(a: &EvalArgs) -> Result<(), Error> {
     let reference_mesh;
     let (reference, truth_text) = match Truth::parse(&a.truth) {
         Some(Ok(t)) => (Reference::Analytic(t), format!("{t:?}")),
-        Some(Err(e)) => return Err(Error::Usage(e)),
+        Some(Err(e)) => return Err(Error::usage(e)),
         None => {
             reference_mesh = curvenet::io::read_mesh(Path::new(&a.truth))?;
             (
@@ -73,7 +73,7 @@ pub fn run(a: &EvalArgs) -> Result<(), Error> {
     );
     if a.json {
         let v = serde_json::json!({ "mesh": a.mesh.display().to_string(), "truth": a.truth, "evaluation": e });
-        out!("{}", serde_json::to_string_pretty(&v).map_err(|e| Error::Usage(e.to_string()))?);
+        out!("{}", serde_json::to_string_pretty(&v).map_err(|e| Error::usage(e.to_string()))?);
         return Ok(());
     }
     out!("mesh   {} ({} vertices, {} on the curves excluded)", a.mesh.display(), mesh.positions.len(), e.excluded);

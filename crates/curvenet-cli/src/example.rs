@@ -35,15 +35,15 @@ pub fn run(a: &ExampleArgs) -> Result<(), Error> {
         return Ok(());
     }
     let (Some(name), Some(out)) = (&a.name, &a.output) else {
-        return Err(Error::Usage("give an example name and -o FILE (see --list)".into()));
+        return Err(Error::usage("give an example name and -o FILE (see --list)"));
     };
     let net = examples::example(name).ok_or_else(|| {
         let names: Vec<&str> = examples::EXAMPLES.iter().map(|e| e.0).collect();
-        Error::Usage(format!("unknown example \"{name}\"; the examples are: {}", names.join(", ")))
+        Error::usage(format!("unknown example \"{name}\"; the examples are: {}", names.join(", ")))
     })?;
     let net = match a.noise {
         Some(f) if f.is_finite() && f >= 0.0 => net.perturbed(f, a.seed),
-        Some(f) => return Err(Error::Usage(format!("--noise {f} is not a non-negative number"))),
+        Some(f) => return Err(Error::usage(format!("--noise {f} is not a non-negative number"))),
         None => net,
     };
     write_network(out, &net)?;

@@ -43,7 +43,7 @@ fn methods(vertices: usize) -> Vec<(&'static str, Options)> {
 }
 
 fn network(name: &str) -> Result<Network, Error> {
-    example(name).ok_or_else(|| Error::Usage(format!("example {name} missing")))
+    example(name).ok_or_else(|| Error::usage(format!("example {name} missing")))
 }
 
 fn scene(net: &Network, options: &Options) -> Result<Scene, Error> {

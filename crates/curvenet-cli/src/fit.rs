@@ -69,7 +69,7 @@ fn write(path: &std::path::Path, positions: &[curvenet::geom::DVec3], faces: &[[
 
 pub fn run(a: &FitArgs) -> Result<(), Error> {
     if a.output.extension().and_then(|e| e.to_str()) != Some("json") {
-        return Err(Error::Usage(format!("{}: the model is written as .json", a.output.display())));
+        return Err(Error::usage(format!("{}: the model is written as .json", a.output.display())));
     }
     if let Some(s) = &a.surface {
         check_mesh_path(s)?;
@@ -83,7 +83,7 @@ pub fn run(a: &FitArgs) -> Result<(), Error> {
         reduce: a.reduce,
     };
     let (model, out, report) = fit(&mesh.positions, &mesh.faces, &opts)?;
-    let json = serde_json::to_string(&model).map_err(|e| Error::Usage(e.to_string()))?;
+    let json = serde_json::to_string(&model).map_err(|e| Error::usage(e.to_string()))?;
     write_text(&a.output, &json)?;
     if let Some(s) = &a.surface {
         write(s, &out, &mesh.faces)?;

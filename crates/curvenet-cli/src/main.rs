@@ -103,9 +103,27 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("error: {}", e.spelled(&flag_spelling()));
             ExitCode::from(e.exit_code() as u8)
         }
+    }
+}
+
+/// The library names options neutrally in its messages (`` `spacing` ``): on the command line
+/// they are the long flags of the same name (`--spacing`). Only names that are flags of some
+/// subcommand are respelled.
+fn flag_spelling() -> impl Fn(&str) -> Option<String> {
+    use clap::CommandFactory;
+    let cmd = Cli::command();
+    let mut flags: Vec<String> = cmd
+        .get_subcommands()
+        .flat_map(|s| s.get_arguments().filter_map(|a| a.get_long().map(str::to_string)).collect::<Vec<_>>())
+        .collect();
+    flags.sort();
+    flags.dedup();
+    move |name: &str| {
+        let long = name.replace('_', "-");
+        flags.binary_search(&long).is_ok().then(|| format!("--{long}"))
     }
 }
 

@@ -85,7 +85,7 @@ impl PictureArgs {
     pub fn options(&self) -> Result<RenderOptions, Error> {
         let colorings = parse_colorings(&self.color)?;
         let mut views =
-            self.view.iter().map(|v| View::parse(v).map_err(Error::Usage)).collect::<Result<Vec<_>, _>>()?;
+            self.view.iter().map(|v| View::parse(v).map_err(Error::usage)).collect::<Result<Vec<_>, _>>()?;
         if self.grid && views.is_empty() {
             views = vec![
                 View { azimuth: 0.0, elevation: 0.0, zoom: 1.0 },
@@ -97,7 +97,7 @@ impl PictureArgs {
         let (width, height) = parse_size(&self.size)?;
         if let Some(r) = self.range {
             if !(r.is_finite() && r > 0.0) {
-                return Err(Error::Usage(format!("--range {r}: must be a positive number")));
+                return Err(Error::usage(format!("--range {r}: must be a positive number")));
             }
         }
         let columns = self.columns.or(if colorings.len() == 1 && views.len() > 1 { Some(2) } else { None });
@@ -122,7 +122,7 @@ fn parse_colorings(list: &str) -> Result<Vec<Coloring>, Error> {
     list.split(',')
         .map(|s| {
             Coloring::parse(s.trim()).ok_or_else(|| {
-                Error::Usage(format!(
+                Error::usage(format!(
                     "--color: unknown colouring \"{}\"; use shaded, curvature, isophotes, normal-deviation or all",
                     s.trim()
                 ))
@@ -132,7 +132,7 @@ fn parse_colorings(list: &str) -> Result<Vec<Coloring>, Error> {
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), Error> {
-    let bad = || Error::Usage(format!("--size \"{s}\": expected WIDTHxHEIGHT in pixels, e.g. 1200x900"));
+    let bad = || Error::usage(format!("--size \"{s}\": expected WIDTHxHEIGHT in pixels, e.g. 1200x900"));
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
     Ok((w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?))
 }
@@ -141,7 +141,7 @@ fn parse_size(s: &str) -> Result<(u32, u32), Error> {
 pub fn check_png_path(path: &Path) -> Result<(), Error> {
     match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("png") => Ok(()),
-        _ => Err(Error::Usage(format!("{}: the image must be a .png file", path.display()))),
+        _ => Err(Error::usage(format!("{}: the image must be a .png file", path.display()))),
     }
 }
 
@@ -156,7 +156,7 @@ fn is_mesh(path: &Path) -> Result<bool, Error> {
             let text = std::fs::read(path).map_err(|e| Error::Io { path: path.display().to_string(), source: e })?;
             Ok(text.split(|&b| b == b'\n').any(|l| l.starts_with(b"f ")))
         }
-        _ => Err(Error::Usage(format!(
+        _ => Err(Error::usage(format!(
             "{}: unknown input format \".{ext}\"; a mesh (.ply, .off, .obj) or a network (.json, .net, .obj)",
             path.display()
         ))),
@@ -176,7 +176,7 @@ pub fn run(a: &RenderArgs) -> Result<(), Error> {
         }
     } else {
         if a.curves.is_some() {
-            return Err(Error::Usage("--curves is for mesh inputs; a network input draws its own curves".into()));
+            return Err(Error::usage("--curves is for mesh inputs; a network input draws its own curves"));
         }
         let network = read_network(&a.input)?;
         let progress = Progress::new(a.quiet);

@@ -49,7 +49,7 @@ pub struct SampleArgs {
 }
 
 fn parse_planes(s: &str) -> Result<[usize; 3], Error> {
-    let bad = || Error::Usage(format!("--planes {s}: give three counts X,Y,Z (e.g. 8,8,8) or one count"));
+    let bad = || Error::usage(format!("--planes {s}: give three counts X,Y,Z (e.g. 8,8,8) or one count"));
     let v: Vec<usize> = s.split(',').map(|t| t.trim().parse::<usize>().map_err(|_| bad())).collect::<Result<_, _>>()?;
     match v.as_slice() {
         [n] => Ok([*n; 3]),

@@ -70,8 +70,8 @@ pub fn run(a: &StudyArgs) -> Result<(), Error> {
                 None => None,
                 Some(spec) => match Truth::parse(spec) {
                     Some(Ok(t)) => Some(t),
-                    Some(Err(e)) => return Err(Error::Usage(e)),
-                    None => return Err(Error::Usage(format!("--truth \"{spec}\": expected an analytic truth"))),
+                    Some(Err(e)) => return Err(Error::usage(e)),
+                    None => return Err(Error::usage(format!("--truth \"{spec}\": expected an analytic truth"))),
                 },
             };
             let rows = convergence(&net, truth.as_ref(), &options(&c.solve), c.start_vertices, c.levels)?;
@@ -177,7 +177,7 @@ fn timed(net: &Network, options: &Options, runs: usize) -> Result<(Surface, f64)
         times.push(clock.elapsed().as_secs_f64());
         last = Some(s);
     }
-    let s = last.ok_or_else(|| Error::Usage("no run".into()))?;
+    let s = last.ok_or_else(|| Error::usage("no run"))?;
     Ok((s, median(times)))
 }
 
@@ -295,10 +295,10 @@ fn accuracy_report(r: &AccuracyArgs) -> Result<(), Error> {
         "The paper's sphere had 19545 free / 738 curve vertices, its torus 24321 / 564; curvenet uses one \
          spacing for curves and patches, so at the same total it has more curve vertices on the torus.\n"
     );
-    let sphere = example("sphere").ok_or_else(|| Error::Usage("no sphere example".into()))?;
-    let torus42 = example("torus").ok_or_else(|| Error::Usage("no torus example".into()))?;
-    let st = example_truth("sphere").ok_or_else(|| Error::Usage("no sphere truth".into()))?;
-    let tt = example_truth("torus").ok_or_else(|| Error::Usage("no torus truth".into()))?;
+    let sphere = example("sphere").ok_or_else(|| Error::usage("no sphere example"))?;
+    let torus42 = example("torus").ok_or_else(|| Error::usage("no torus example"))?;
+    let st = example_truth("sphere").ok_or_else(|| Error::usage("no sphere truth"))?;
+    let tt = example_truth("torus").ok_or_else(|| Error::usage("no torus truth"))?;
     table1(&mut doc, "Unit sphere, 3 great circles", &sphere, &st, 19545 + 738, &PAPER_SPHERE, r.runs)?;
     table1(
         &mut doc,

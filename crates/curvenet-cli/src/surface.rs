@@ -65,7 +65,7 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
     t.total = start.elapsed().as_secs_f64();
     let staged_stats = match &a.stats {
         Some(path) => {
-            let json = serde_json::to_string_pretty(&surface.stats).map_err(|e| Error::Usage(e.to_string()))?;
+            let json = serde_json::to_string_pretty(&surface.stats).map_err(|e| Error::usage(e.to_string()))?;
             Some(Staged::write(path, |w| w.write_all(json.as_bytes()))?)
         }
         None => None,

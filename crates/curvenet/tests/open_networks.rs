@@ -45,7 +45,7 @@ fn a_hole_reached_by_a_single_curve_is_covered_with_a_warning() {
     let net = Network { curves, snap: Some(1e-3) };
     let s = surface(&net, &Options { vertices: Some(3000), ..Default::default() }).unwrap();
     assert_eq!(s.stats.components, 1);
-    let text: Vec<&str> = s.warnings.iter().map(|w| w.0.as_str()).collect();
+    let text: Vec<&str> = s.warnings.iter().map(|w| w.message.as_str()).collect();
     assert!(text.iter().any(|w| w.contains("\"bridge\"") && w.contains("same patch on both sides")), "{text:?}");
     assert!(text.iter().any(|w| w.contains("\"hole\"") && w.contains("covered")), "{text:?}");
     // One sheet: the area of the surface is that of the square.

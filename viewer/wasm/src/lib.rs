@@ -76,7 +76,7 @@ pub unsafe extern "C" fn cn_free(ptr: *mut u8, len: usize) {
 /// `ptr` must point to `len` readable bytes.
 unsafe fn text_arg(ptr: *const u8, len: usize) -> Result<String, Error> {
     let bytes = std::slice::from_raw_parts(ptr, len);
-    String::from_utf8(bytes.to_vec()).map_err(|e| Error::Input(format!("the file is not UTF-8 text: {e}")))
+    String::from_utf8(bytes.to_vec()).map_err(|e| Error::input(format!("the file is not UTF-8 text: {e}")))
 }
 
 fn format_of(code: u32) -> Result<NetworkFormat, Error> {
@@ -84,7 +84,7 @@ fn format_of(code: u32) -> Result<NetworkFormat, Error> {
         0 => Ok(NetworkFormat::Json),
         1 => Ok(NetworkFormat::Obj),
         2 => Ok(NetworkFormat::Net),
-        _ => Err(Error::Usage(format!("unknown network format code {code}"))),
+        _ => Err(Error::usage(format!("unknown network format code {code}"))),
     }
 }
 
@@ -96,7 +96,7 @@ fn method_of(code: u32) -> Result<Method, Error> {
         3 => Method::Method4,
         4 => Method::ShortPaper,
         5 => Method::Cauchy,
-        _ => return Err(Error::Usage(format!("unknown method code {code}"))),
+        _ => return Err(Error::usage(format!("unknown method code {code}"))),
     })
 }
 
@@ -187,7 +187,7 @@ pub unsafe extern "C" fn cn_example(ptr: *const u8, len: usize) -> u32 {
     finish((|| {
         let name = text_arg(ptr, len)?;
         let net =
-            curvenet::network::examples::example(&name).ok_or_else(|| Error::Usage(format!("no example named \"{name}\"")))?;
+            curvenet::network::examples::example(&name).ok_or_else(|| Error::usage(format!("no example named \"{name}\"")))?;
         set_text(curvenet::io::network_to_string(&net, NetworkFormat::Json));
         Ok(())
     })())

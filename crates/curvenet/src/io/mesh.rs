@@ -63,7 +63,7 @@ fn mesh_format(path: &Path) -> Result<MeshFormat> {
         "obj" => Ok(MeshFormat::Obj),
         "ply" => Ok(MeshFormat::Ply),
         "off" => Ok(MeshFormat::Off),
-        ext => Err(Error::Usage(format!("{}: unknown mesh format \".{ext}\"; use .obj, .ply or .off", path.display()))),
+        ext => Err(Error::usage(format!("{}: unknown mesh format \".{ext}\"; use .obj, .ply or .off", path.display()))),
     }
 }
 
@@ -90,23 +90,23 @@ pub fn stage_mesh(path: &Path, mesh: MeshData<'_>) -> Result<Staged> {
     ] {
         if let Some(len) = len {
             if len != n {
-                return Err(Error::Usage(format!("mesh attribute {name} has {len} entries for {n} vertices")));
+                return Err(Error::usage(format!("mesh attribute {name} has {len} entries for {n} vertices")));
             }
         }
     }
     if let Some(bad) = mesh.faces.iter().flatten().find(|&&i| i as usize >= n) {
-        return Err(Error::Usage(format!("mesh face refers to vertex {bad} but there are {n} vertices")));
+        return Err(Error::usage(format!("mesh face refers to vertex {bad} but there are {n} vertices")));
     }
     // No NaN or infinity is ever written: a non-finite value is a numerical failure upstream.
     let vectors =
         [("position", Some(mesh.positions)), ("normal", mesh.normals), ("propagated normal", mesh.propagated_normals)];
     for (name, values) in vectors {
         if let Some(i) = values.and_then(|v| v.iter().position(|p| !p.is_finite())) {
-            return Err(Error::Numerical(format!("vertex {i}: its {name} is not finite; nothing was written")));
+            return Err(Error::numerical(format!("vertex {i}: its {name} is not finite; nothing was written")));
         }
     }
     if let Some(i) = mesh.mean_curvature.and_then(|h| h.iter().position(|h| !h.is_finite())) {
-        return Err(Error::Numerical(format!("vertex {i}: its mean curvature is not finite; nothing was written")));
+        return Err(Error::numerical(format!("vertex {i}: its mean curvature is not finite; nothing was written")));
     }
     Staged::write(path, |w| match format {
         MeshFormat::Obj => write_obj(w, mesh),
@@ -321,7 +321,7 @@ fn check_faces(m: &MeshFile, source: &str) -> Result<()> {
     for (fi, f) in m.faces.iter().enumerate() {
         for &i in f {
             if i as usize >= n {
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "{source}: face {fi} refers to vertex {i}, but the mesh has {n} vertices"
                 )));
             }
@@ -505,7 +505,7 @@ struct PlyReader<'a> {
 
 impl PlyReader<'_> {
     fn err(&self, msg: impl Into<String>) -> Error {
-        Error::Input(format!("{}: byte {}: {}", self.source, self.pos, msg.into()))
+        Error::input(format!("{}: byte {}: {}", self.source, self.pos, msg.into()))
     }
 
     fn read(&mut self, ty: Scalar) -> Result<f64> {

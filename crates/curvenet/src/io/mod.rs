@@ -36,7 +36,7 @@ impl NetworkFormat {
             "json" => Ok(Self::Json),
             "obj" => Ok(Self::Obj),
             "net" => Ok(Self::Net),
-            _ => Err(Error::Usage(format!(
+            _ => Err(Error::usage(format!(
                 "{}: unknown network format \".{ext}\"; use .json, .obj or .net",
                 path.display()
             ))),

@@ -96,9 +96,9 @@ pub fn short_paper(
         }
     }
     if !(num.sqrt() <= 1e-6 * den.sqrt().max(f64::MIN_POSITIVE)) {
-        return Err(crate::error::Error::Numerical(format!(
+        return Err(crate::error::Error::numerical(format!(
             "the short-paper system is too ill-conditioned at this resolution (relative residual {:.1e}); \
-             raise --w1 or the spacing",
+             raise `w1` or `spacing`",
             num.sqrt() / den.sqrt()
         )));
     }

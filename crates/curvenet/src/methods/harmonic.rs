@@ -26,7 +26,7 @@ use faer::Mat;
 /// `fixed[i]` of `X` set to `values[i·columns .. (i+1)·columns]` (row-major `|fixed| × columns`).
 /// Returns `X`, row-major `#V × columns`, with the fixed rows equal to `values`.
 ///
-/// Errors with [`Error::Usage`] when an index is out of range, a fixed vertex repeats, the
+/// Errors with [`Error::usage`] when an index is out of range, a fixed vertex repeats, the
 /// sizes disagree or the order is unsupported, and [`Error::Numerical`] when a vertex has no
 /// area (isolated, or degenerate triangles) or a free component touches no fixed vertex.
 pub fn harmonic(
@@ -39,21 +39,21 @@ pub fn harmonic(
 ) -> Result<Vec<f64>> {
     let n = positions.len();
     if !(1..=3).contains(&order) {
-        return Err(Error::Usage(format!("harmonic order k = {order} is not supported (1, 2 or 3)")));
+        return Err(Error::usage(format!("harmonic order k = {order} is not supported (1, 2 or 3)")));
     }
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        return Err(Error::Usage(format!("vertex {i} is not finite")));
+        return Err(Error::usage(format!("vertex {i} is not finite")));
     }
     for (fi, f) in faces.iter().enumerate() {
         if let Some(k) = (0..3).find(|&k| f[k] as usize >= n) {
-            return Err(Error::Usage(format!("face {fi}, corner {k}: vertex {} out of range ({n} vertices)", f[k])));
+            return Err(Error::usage(format!("face {fi}, corner {k}: vertex {} out of range ({n} vertices)", f[k])));
         }
     }
     if fixed.is_empty() {
-        return Err(Error::Usage("no fixed vertex: Δᵏ X = 0 has no unique solution without one".into()));
+        return Err(Error::usage("no fixed vertex: Δᵏ X = 0 has no unique solution without one"));
     }
     if values.len() != fixed.len() * columns {
-        return Err(Error::Usage(format!(
+        return Err(Error::usage(format!(
             "{} fixed vertices with {columns} columns need {} values, got {}",
             fixed.len(),
             fixed.len() * columns,
@@ -64,10 +64,10 @@ pub fn harmonic(
     let mut new_of_old = vec![u32::MAX; n];
     for (k, &v) in fixed.iter().enumerate() {
         if v >= n {
-            return Err(Error::Usage(format!("fixed vertex {v} (entry {k}) out of range ({n} vertices)")));
+            return Err(Error::usage(format!("fixed vertex {v} (entry {k}) out of range ({n} vertices)")));
         }
         if new_of_old[v] != u32::MAX {
-            return Err(Error::Usage(format!("fixed vertex {v} is listed twice (entry {k})")));
+            return Err(Error::usage(format!("fixed vertex {v} is listed twice (entry {k})")));
         }
         new_of_old[v] = k as u32;
     }
@@ -97,7 +97,7 @@ pub fn harmonic(
     let ops = cotan_operators(&mesh, Metric::Surface, &mesh.positions);
     if order > 1 {
         if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
-            return Err(Error::Numerical(format!(
+            return Err(Error::numerical(format!(
                 "vertex {} has zero area (isolated, or degenerate triangles around it)",
                 old_of_new[i]
             )));
@@ -125,7 +125,7 @@ pub fn harmonic(
         for c in 0..columns {
             let x = rhs[(i, c)];
             if !x.is_finite() {
-                return Err(Error::Numerical(format!("harmonic solve: vertex {v} is not finite")));
+                return Err(Error::numerical(format!("harmonic solve: vertex {v} is not finite")));
             }
             out[v * columns + c] = x;
         }

@@ -208,7 +208,7 @@ pub fn iterate(
             // 3. Guide on the current surface.
             h = blended_mean_curvature(&mesh.faces, &v, &normals, &ops.mass, &mesh.on_boundary);
             if let Some(i) = h.iter().position(|x| !x.is_finite()) {
-                return Err(Error::Numerical(format!("iterated guide is not finite at vertex {i}")));
+                return Err(Error::numerical(format!("iterated guide is not finite at vertex {i}")));
             }
             let mut b = Mat::<f64>::zeros(n, 3);
             for k in 0..n {

@@ -189,7 +189,7 @@ pub(crate) fn factor_on(mesh: &Mesh, q: &Csc, first: usize, what: &str) -> crate
 
 pub(crate) fn check_finite(p: &[DVec3], what: &str) -> crate::error::Result<()> {
     if let Some(i) = p.iter().position(|v| !v.is_finite()) {
-        return Err(crate::error::Error::Numerical(format!(
+        return Err(crate::error::Error::numerical(format!(
             "{what}: vertex {i} is not finite; the system is ill-conditioned"
         )));
     }

@@ -140,7 +140,7 @@ pub(crate) fn propagate(
     for i in nc..n {
         let u = n_star[i].normalize_or_zero();
         if u == DVec3::ZERO || !u.is_finite() {
-            return Err(Error::Numerical(format!(
+            return Err(Error::numerical(format!(
                 "the propagated normal vanishes at vertex {i} near {}: the input normals around it cancel out \
                  (check that they all point outward)",
                 fmt_point(v_star[i])
@@ -216,7 +216,7 @@ pub fn normal_control_cached(
     }
     let chol = match (reuse, prop.as_ref()) {
         (true, Some(p)) => p,
-        _ => factors.fit.as_ref().ok_or_else(|| Error::Numerical("the fit system was not factorised".into()))?,
+        _ => factors.fit.as_ref().ok_or_else(|| Error::numerical("the fit system was not factorised"))?,
     };
 
     // 2–4. Guide from V*, fit, then guide from the fitted surface and fit again.
@@ -235,7 +235,7 @@ pub fn normal_control_cached(
         };
         h = blended_mean_curvature(&mesh.faces, &guide_positions, &n_star, area, &mesh.on_boundary);
         if let Some(i) = h.iter().position(|x| !x.is_finite()) {
-            return Err(Error::Numerical(format!(
+            return Err(Error::numerical(format!(
                 "the mean-curvature guide is not finite at vertex {i} (a degenerate triangle?)"
             )));
         }

@@ -10,17 +10,17 @@ use crate::network::{curve_label, Network};
 /// Rodrigues' formula `n' = n cos θ + (t × n) sin θ + t (t · n)(1 − cos θ)`.
 pub fn rotate_normals(network: &Network, curve: usize, degrees: f64) -> Result<Network> {
     let Some(c) = network.curves.get(curve) else {
-        return Err(Error::Usage(format!(
+        return Err(Error::usage(format!(
             "curve {curve} does not exist: the network has {} curves",
             network.curves.len()
         )));
     };
     if !degrees.is_finite() {
-        return Err(Error::Usage(format!("rotation angle {degrees} is not a number")));
+        return Err(Error::usage(format!("rotation angle {degrees} is not a number")));
     }
     let n = c.points.len();
     if n < 2 || c.normals.len() != n {
-        return Err(Error::Input(format!(
+        return Err(Error::input(format!(
             "{} has too few samples to have a tangent",
             curve_label(&network.curves, curve)
         )));

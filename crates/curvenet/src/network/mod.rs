@@ -142,14 +142,14 @@ impl Network {
     pub fn validated(&self) -> Result<(Network, Vec<Warning>)> {
         let mut warnings = Vec::new();
         if self.curves.is_empty() {
-            return Err(Error::Input(
-                "the network has no curves: give at least one curve with points and normals".into(),
+            return Err(Error::input(
+                "the network has no curves: give at least one curve with points and normals",
             ));
         }
         for (ci, c) in self.curves.iter().enumerate() {
             let label = || curve_label(&self.curves, ci);
             if c.points.len() != c.normals.len() {
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "{}: {} points but {} normals; every point needs one normal, in the same order",
                     label(),
                     c.points.len(),
@@ -158,7 +158,7 @@ impl Network {
             }
             let need = if c.closed { 3 } else { 2 };
             if c.points.len() < need {
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "{} has {} sample(s); a{} curve needs at least {need}",
                     label(),
                     c.points.len(),
@@ -167,7 +167,7 @@ impl Network {
             }
             for (si, p) in c.points.iter().enumerate() {
                 if !p.is_finite() {
-                    return Err(Error::Input(format!(
+                    return Err(Error::input(format!(
                         "{}, sample {si}: point {} has a non-finite coordinate",
                         label(),
                         fmt_point(*p)
@@ -177,7 +177,7 @@ impl Network {
             for (si, n) in c.normals.iter().enumerate() {
                 let u = n.normalize_or_zero();
                 if !n.is_finite() || u == DVec3::ZERO || !u.is_finite() {
-                    return Err(Error::Input(format!(
+                    return Err(Error::input(format!(
                         "{}, sample {si}: normal {} cannot be normalised; every sample needs a \
                          finite, non-zero normal pointing to the outside of the surface",
                         label(),
@@ -188,7 +188,7 @@ impl Network {
         }
         if let Some(s) = self.snap {
             if !(s.is_finite() && s > 0.0) {
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "snapping tolerance {s} is not a positive number; give a distance such as 1e-6 or leave it out"
                 )));
             }
@@ -197,11 +197,11 @@ impl Network {
         // (The diagonal underflows to 0 for extents below 1e-154: test the spread itself.)
         let diag = bbox.diagonal().max((bbox.max - bbox.min).max_element());
         if !(diag > 0.0) {
-            return Err(Error::Input("all samples of the network coincide: there is nothing to surface".into()));
+            return Err(Error::input("all samples of the network coincide: there is nothing to surface"));
         }
         let far = bbox.min.abs().max(bbox.max.abs()).max_element();
         if !(far <= Self::MAX_EXTENT && diag <= Self::MAX_EXTENT && diag >= 1.0 / Self::MAX_EXTENT) {
-            return Err(Error::Input(format!(
+            return Err(Error::input(format!(
                 "the network's coordinates (largest magnitude {far:.3e}, bounding-box diagonal {diag:.3e}) are \
                  outside the supported range [{:.0e}, {:.0e}]; rescale the network (the result scales with it)",
                 1.0 / Self::MAX_EXTENT,
@@ -209,7 +209,7 @@ impl Network {
             )));
         }
         if far > Self::MAX_OFFSET_RATIO * diag {
-            return Err(Error::Input(format!(
+            return Err(Error::input(format!(
                 "the network lies {far:.3e} from the origin but is only {diag:.3e} across: too few significant \
                  digits are left of its shape; translate it towards the origin"
             )));
@@ -234,7 +234,7 @@ impl Network {
             }
             if !merged.is_empty() {
                 let list: Vec<String> = merged.iter().take(5).map(|s| s.to_string()).collect();
-                warnings.push(Warning(format!(
+                warnings.push(Warning::new(format!(
                     "{label}: {} sample(s) repeated the previous one and were merged (sample {}{})",
                     merged.len(),
                     list.join(", "),
@@ -244,20 +244,20 @@ impl Network {
             if c.closed && points.len() > 1 && points[0].distance(points[points.len() - 1]) <= dup_tol {
                 points.pop();
                 normals.pop();
-                warnings.push(Warning(format!(
+                warnings.push(Warning::new(format!(
                     "{label}: closed curve repeats its first sample at the end; the repeat was dropped"
                 )));
             }
             let need = if c.closed { 3 } else { 2 };
             if points.len() < need {
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "{label} has {} distinct sample(s); a{} curve needs at least {need}",
                     points.len(),
                     if c.closed { " closed" } else { "n open" }
                 )));
             }
             if let Some(si) = tangent_normal(&points, &normals, c.closed) {
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "{label}, sample {si}: normal {} is tangent to the curve (within {:.0}° of its direction); \
                      normals must be across the curve, pointing to the outside of the surface",
                     fmt_point(normals[si]),

@@ -256,10 +256,10 @@ fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
     curves.dedup();
     let list = |v: &[String]| if v.is_empty() { "interior vertices".to_string() } else { v.join(" and ") };
     let patches: Vec<String> = patches.iter().map(|p| p.to_string()).collect();
-    Err(Error::Topology(format!(
+    Err(Error::topology(format!(
         "patches {} overlap near {} (an edge of {} in {} triangles): the curves come closer than the \
-         mesh spacing between crossings, or a patch folds onto its neighbour; give a smaller --spacing, \
-         a larger --snap, or fix the curves there",
+         mesh spacing between crossings, or a patch folds onto its neighbour; give a smaller `spacing`, \
+         a larger `snap`, or fix the curves there",
         patches.join(", "),
         crate::geom::fmt_point(mesh.positions[a as usize]),
         list(&curves),
@@ -322,7 +322,7 @@ fn fold_warnings(mesh: &Mesh) -> Vec<Warning> {
     mesh.fold_fallback
         .iter()
         .map(|p| {
-            Warning(format!(
+            Warning::new(format!(
                 "patch {p}: its planar projection folds over (a deep or twisted cycle); it was triangulated on a \
                  fallback domain (the plane of its vector area, or an ellipse its border is mapped onto by arc length)"
             ))
@@ -378,26 +378,26 @@ pub(crate) fn prepare(
     let mut timings = Timings::default();
     if let Some(d) = options.spacing {
         if !(d.is_finite() && d > 0.0) {
-            return Err(Error::Usage(format!("spacing {d} is not a positive distance")));
+            return Err(Error::usage(format!("spacing {d} is not a positive distance")));
         }
     }
     if options.vertices == Some(0) {
-        return Err(Error::Usage("the vertex count must be positive".into()));
+        return Err(Error::usage("the vertex count must be positive"));
     }
     if let Some(w) = options.soft {
         if !(w.is_finite() && w > 0.0) {
-            return Err(Error::Usage(format!("soft-constraint weight {w} is not a positive number")));
+            return Err(Error::usage(format!("soft-constraint weight {w} is not a positive number")));
         }
         if !matches!(options.method, Method::NormalControl | Method::ShortPaper) {
-            return Err(Error::Usage(format!(
-                "--soft applies to normal-control only, not to {}",
+            return Err(Error::usage(format!(
+                "`soft` applies to normal-control and short-paper only, not to {}",
                 options.method.name()
             )));
         }
     }
     if let Some(s) = options.snap {
         if !(s.is_finite() && s > 0.0) {
-            return Err(Error::Usage(format!("snapping tolerance {s} is not a positive distance")));
+            return Err(Error::usage(format!("snapping tolerance {s} is not a positive distance")));
         }
     }
 
@@ -429,8 +429,8 @@ pub(crate) fn prepare(
     let mut d = options.spacing.unwrap_or_else(|| size.spacing(target));
     let estimate = size.vertices(d);
     if estimate > Options::MAX_VERTICES {
-        return Err(Error::Usage(format!(
-            "spacing {d:.3e} would create about {estimate:.2e} vertices (limit {:.0e}); give a larger --spacing or a smaller --vertices",
+        return Err(Error::usage(format!(
+            "spacing {d:.3e} would create about {estimate:.2e} vertices (limit {:.0e}); give a larger `spacing` or a smaller `vertices`",
             Options::MAX_VERTICES
         )));
     }
@@ -496,7 +496,7 @@ pub(crate) fn prepare(
             timings.tessellate += clock.elapsed().as_secs_f64();
             warnings.extend(fold_warnings(&mesh).into_iter().filter(|w| !warnings.contains(w)).collect::<Vec<_>>());
             for p in kept {
-                warnings.push(Warning(format!(
+                warnings.push(Warning::new(format!(
                     "patch {p}: its conformal flattening folds over; it keeps the planar projection"
                 )));
             }
@@ -568,7 +568,7 @@ pub(crate) fn solve_prepared(
         if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
             let patch = mesh.faces.iter().position(|f| f.contains(&(i as u32))).map(|f| mesh.face_patch[f]);
             let at = patch.map_or_else(String::new, |p| format!(" of patch {p}"));
-            return Err(Error::Numerical(format!("vertex {i}{at} has zero area: degenerate triangles around it")));
+            return Err(Error::numerical(format!("vertex {i}{at} has zero area: degenerate triangles around it")));
         }
         match options.method {
             Method::NormalControl => {
@@ -645,11 +645,11 @@ pub(crate) fn solve_prepared(
                 let (r, report) = iterate(mesh, result, &params, &mut st)?;
                 result = r;
                 match report.stop {
-                    Stop::Degenerate => warnings.push(Warning(format!(
+                    Stop::Degenerate => warnings.push(Warning::new(format!(
                         "the 3D iteration stopped after {} step(s): a triangle degenerated; the last good surface is kept",
                         report.updates.len()
                     ))),
-                    Stop::Diverging => warnings.push(Warning(format!(
+                    Stop::Diverging => warnings.push(Warning::new(format!(
                         "the 3D iteration stopped after {} step(s): its updates grew; the last good surface is kept",
                         report.updates.len()
                     ))),

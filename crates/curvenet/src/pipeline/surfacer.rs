@@ -95,17 +95,17 @@ impl Surfacer {
     /// sample of the curve; they need not be unit length. The next [`Surfacer::solve`] uses
     /// them with the kept mesh and factorisations.
     ///
-    /// Errors: [`Error::Usage`] for a curve index out of range; [`Error::Input`] for a wrong
+    /// Errors: [`Error::usage`] for a curve index out of range; [`Error::Input`] for a wrong
     /// number of normals or an invalid normal (curve and sample named), as [`crate::surface`];
     /// [`Error::Topology`] when the new normals change the network's nodes (they are averaged
     /// there: normals that cancel). The surfacer is unchanged on error.
     pub fn update_normals(&mut self, curve: usize, normals: &[DVec3]) -> Result<()> {
         let count = self.network.curves.len();
         let Some(c) = self.network.curves.get(curve) else {
-            return Err(Error::Usage(format!("curve {curve} does not exist: the network has {count} curves")));
+            return Err(Error::usage(format!("curve {curve} does not exist: the network has {count} curves")));
         };
         if normals.len() != c.points.len() {
-            return Err(Error::Input(format!(
+            return Err(Error::input(format!(
                 "{}: {} normals given for {} samples; give one normal per sample",
                 curve_label(&self.network.curves, curve),
                 normals.len(),
@@ -127,7 +127,7 @@ impl Surfacer {
         let same = res.positions.len() == mesh.num_curve
             && res.positions.iter().zip(&mesh.positions).all(|(a, b)| a.distance(*b) <= 1e-12 * scale);
         if !same {
-            return Err(Error::Topology(format!(
+            return Err(Error::topology(format!(
                 "the new normals of {} change the network's nodes or curve vertices; build a new surfacer",
                 curve_label(&self.network.curves, curve)
             )));

@@ -10,7 +10,7 @@
 //!
 //! ```no_run
 //! # use curvenet::render::*;
-//! let net = curvenet::network::examples::example("torus").ok_or(curvenet::Error::Usage("no torus example".into()))?;
+//! let net = curvenet::network::examples::example("torus").ok_or(curvenet::Error::usage("no torus example"))?;
 //! let surface = curvenet::surface(&net, &curvenet::Options::default())?;
 //! let scene = Scene::from_surface(&surface).with_network_curves(&net);
 //! let image = render(&scene, &RenderOptions { colorings: vec![Coloring::Curvature], ..Default::default() })?;
@@ -157,10 +157,10 @@ impl Scene {
     pub fn from_mesh(mesh: MeshData<'_>) -> Result<Scene> {
         let n = mesh.positions.len();
         if n == 0 || mesh.faces.is_empty() {
-            return Err(Error::Input("the mesh has no triangles to render".into()));
+            return Err(Error::input("the mesh has no triangles to render"));
         }
         if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
-            return Err(Error::Input(format!("vertex {i} of the mesh is not finite")));
+            return Err(Error::input(format!("vertex {i} of the mesh is not finite")));
         }
         check_faces(mesh.faces, n)?;
         let boundary = boundary_vertices(n, mesh.faces);
@@ -211,7 +211,7 @@ impl Scene {
     pub fn check(&self) -> Result<()> {
         let n = self.positions.len();
         if self.faces.is_empty() {
-            return Err(Error::Input("the mesh has no triangles to render".into()));
+            return Err(Error::input("the mesh has no triangles to render"));
         }
         check_faces(&self.faces, n)?;
         let lengths = [
@@ -220,7 +220,7 @@ impl Scene {
             ("propagated normals", self.propagated_normals.as_ref().map_or(n, Vec::len)),
         ];
         if let Some((what, len)) = lengths.iter().find(|(_, len)| *len != n) {
-            return Err(Error::Input(format!("the scene has {len} {what} for {n} vertices")));
+            return Err(Error::input(format!("the scene has {len} {what} for {n} vertices")));
         }
         Ok(())
     }
@@ -256,7 +256,7 @@ impl Scene {
 /// An error naming the first face that refers to a vertex beyond the `n` of the mesh.
 fn check_faces(faces: &[[u32; 3]], n: usize) -> Result<()> {
     match faces.iter().enumerate().find(|(_, f)| f.iter().any(|&v| v as usize >= n)) {
-        Some((k, f)) => Err(Error::Input(format!("face {k} {f:?} refers to a vertex beyond the {n} of the mesh"))),
+        Some((k, f)) => Err(Error::input(format!("face {k} {f:?} refers to a vertex beyond the {n} of the mesh"))),
         None => Ok(()),
     }
 }
@@ -371,26 +371,26 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> Result<Image> {
 /// Lays `panels` out in a grid of `columns` columns filling `width × height` pixels.
 pub fn render_panels(panels: &[Panel<'_>], columns: usize, width: u32, height: u32) -> Result<Image> {
     if panels.is_empty() {
-        return Err(Error::Usage("nothing to render: no panels".into()));
+        return Err(Error::usage("nothing to render: no panels"));
     }
     let columns = columns.clamp(1, panels.len());
     let rows = panels.len().div_ceil(columns);
     if width < 64 || height < 64 || width > 16384 || height > 16384 {
-        return Err(Error::Usage(format!(
+        return Err(Error::usage(format!(
             "image size {width}x{height}: each side must be between 64 and 16384 pixels"
         )));
     }
     let (pw, ph) = (width / columns as u32, height / rows as u32);
     if pw < 64 || ph < 64 {
-        return Err(Error::Usage(format!(
+        return Err(Error::usage(format!(
             "image size {width}x{height} is too small for {} panels ({columns} columns): each panel needs 64x64 pixels",
             panels.len()
         )));
     }
     for p in panels {
         if p.coloring == Coloring::NormalDeviation && p.scene.propagated_normals.is_none() {
-            return Err(Error::Usage(
-                "normal deviation needs the propagated normals N*: render a network surfaced by normal-control, or a PLY written by curvenet (pnx/pny/pnz)".into(),
+            return Err(Error::usage(
+                "normal deviation needs the propagated normals N*: render a network surfaced by normal-control, or a PLY written by curvenet (pnx/pny/pnz)",
             ));
         }
         p.scene.check()?;

@@ -298,16 +298,16 @@ struct FaceCut {
 ///
 /// Errors: [`Error::Input`] for a mesh without faces, a face index out of range, a non-finite
 /// coordinate, an edge shared by more than two faces (naming the edge), a mesh with zero
-/// extent; [`Error::Usage`] for a spacing that is not a positive distance, or no planes;
+/// extent; [`Error::usage`] for a spacing that is not a positive distance, or no planes;
 /// [`Error::Topology`] when the sections give no crossing at all.
 pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions) -> Result<(Network, SampleReport)> {
     if faces.is_empty() {
-        return Err(Error::Input("the mesh has no faces: there is nothing to sample".into()));
+        return Err(Error::input("the mesh has no faces: there is nothing to sample"));
     }
     for (fi, f) in faces.iter().enumerate() {
         for &v in f {
             if v as usize >= positions.len() {
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "face {fi} uses vertex {v} but the mesh has {} vertices",
                     positions.len()
                 )));
@@ -315,30 +315,30 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         }
     }
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        return Err(Error::Input(format!("mesh vertex {i} has a non-finite coordinate")));
+        return Err(Error::input(format!("mesh vertex {i} has a non-finite coordinate")));
     }
     let bbox = Aabb::of(faces.iter().flatten().map(|&v| positions[v as usize]));
     let diag = bbox.diagonal();
     if !(diag > 0.0 && diag.is_finite()) {
-        return Err(Error::Input("the mesh has zero extent".into()));
+        return Err(Error::input("the mesh has zero extent"));
     }
     let spacing = opts.spacing.unwrap_or(SampleOptions::DEFAULT_SPACING_RELATIVE * diag);
     if !(spacing.is_finite() && spacing > 0.0) {
-        return Err(Error::Usage(format!("sample spacing {spacing} is not a positive distance")));
+        return Err(Error::usage(format!("sample spacing {spacing} is not a positive distance")));
     }
     if spacing * 1e6 < diag {
-        return Err(Error::Usage(format!(
+        return Err(Error::usage(format!(
             "sample spacing {spacing} is below 1e-6 of the mesh's size {diag:.4e}; the network would be too large"
         )));
     }
     if opts.planes.iter().sum::<usize>() == 0 {
-        return Err(Error::Usage("no section planes: give at least one plane count above 0".into()));
+        return Err(Error::usage("no section planes: give at least one plane count above 0"));
     }
     if !opts.tilt.is_finite() {
-        return Err(Error::Usage(format!("tilt {} is not a finite angle", opts.tilt)));
+        return Err(Error::usage(format!("tilt {} is not a finite angle", opts.tilt)));
     }
     if !(opts.noise.is_finite() && opts.noise >= 0.0) {
-        return Err(Error::Usage(format!("noise {} is not a non-negative number", opts.noise)));
+        return Err(Error::usage(format!("noise {} is not a non-negative number", opts.noise)));
     }
     // Weld vertices at the same position (unwelded seams would read as boundary).
     let mut first_at: HashMap<[u64; 3], u32> = HashMap::new();
@@ -382,7 +382,7 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         }
     }
     if let Some((e, fs)) = edge_faces.iter().find(|(_, fs)| fs.len() > 2) {
-        return Err(Error::Input(format!(
+        return Err(Error::input(format!(
             "the mesh is not a 2-manifold: edge between vertices {} and {} is shared by {} faces",
             e.0,
             e.1,
@@ -906,9 +906,8 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         curves.push(Curve { name: Some(t.name), points, normals, closed: t.closed, boundary: t.boundary });
     }
     if report.crossings == 0 || curves.is_empty() {
-        return Err(Error::Topology(
-            "the plane sections do not cross each other on the mesh: give more planes (--planes) in at least two directions"
-                .into(),
+        return Err(Error::topology(
+            "the plane sections do not cross each other on the mesh: give more planes (`planes`) in at least two directions",
         ));
     }
     let mut net = Network { curves, snap: Some(snap) };

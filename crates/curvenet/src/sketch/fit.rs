@@ -148,7 +148,7 @@ fn stencil_of(positions: &[DVec3], faces: &[[u32; 3]]) -> Result<Stencil> {
     mesh.faces = faces.to_vec();
     let ops = cotan_operators(&mesh, Metric::Surface, positions);
     if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
-        return Err(Error::Input(format!("vertex {i} has zero area: degenerate or unreferenced")));
+        return Err(Error::input(format!("vertex {i} has zero area: degenerate or unreferenced")));
     }
     Ok(Stencil::from_operators(&ops, positions.to_vec()))
 }
@@ -158,14 +158,14 @@ fn stencil_of(positions: &[DVec3], faces: &[[u32; 3]]) -> Result<Stencil> {
 pub fn fit(positions: &[DVec3], faces: &[[u32; 3]], o: &FitOptions) -> Result<(CauchyModel, Vec<DVec3>, FitReport)> {
     let start = Instant::now();
     if !(1..=3).contains(&o.order) {
-        return Err(Error::Usage(format!("order {} is not 1, 2 or 3", o.order)));
+        return Err(Error::usage(format!("order {} is not 1, 2 or 3", o.order)));
     }
     let n = positions.len();
     let feature = match o.curvature_fraction {
         None => feature_vertices(positions, faces, o.angle),
         Some(f) => {
             if !(f > 0.0 && f < 1.0) {
-                return Err(Error::Usage(format!("curvature fraction {f} is not in (0, 1)")));
+                return Err(Error::usage(format!("curvature fraction {f} is not in (0, 1)")));
             }
             curvature_features(positions, faces, f)
         }
@@ -177,7 +177,7 @@ pub fn fit(positions: &[DVec3], faces: &[[u32; 3]], o: &FitOptions) -> Result<(C
     };
     let nfeat = feature.iter().filter(|&&f| f).count();
     if nfeat == 0 {
-        return Err(Error::Input(format!(
+        return Err(Error::input(format!(
             "no edge has a dihedral angle above {}°: lower the angle (the reverse engineering needs feature curves)",
             o.angle
         )));
@@ -357,7 +357,7 @@ fn least_squares(system: &System, basis: &GhostBasis, positions: &[DVec3], g0: &
     let g0m = faer::Mat::<f64>::from_fn(ng, 3, |i, c| g0[i][c]);
     let rhs = basis.w.transpose() * &target + &g0m * faer::Scale(lambda);
     let llt = normal.llt(faer::Side::Lower).map_err(|e| {
-        Error::Numerical(format!("ghost least squares: normal equations not positive definite ({e:?})"))
+        Error::numerical(format!("ghost least squares: normal equations not positive definite ({e:?})"))
     })?;
     let sol = llt.solve(&rhs);
     Ok((0..ng).map(|i| DVec3::new(sol[(i, 0)], sol[(i, 1)], sol[(i, 2)])).collect())
@@ -369,12 +369,12 @@ pub fn resurface(model: &CauchyModel) -> Result<Vec<DVec3>> {
     let n = positions.len();
     for f in &model.faces {
         if f.iter().any(|&v| v as usize >= n) {
-            return Err(Error::Input(format!("model face {f:?} names a vertex ≥ {n}")));
+            return Err(Error::input(format!("model face {f:?} names a vertex ≥ {n}")));
         }
     }
     let mut roles = vec![Role::Free; n];
     for &c in &model.constraints {
-        *roles.get_mut(c as usize).ok_or_else(|| Error::Input(format!("model constraint {c} is not a vertex")))? =
+        *roles.get_mut(c as usize).ok_or_else(|| Error::input(format!("model constraint {c} is not a vertex")))? =
             Role::Cauchy;
     }
     let stencil = stencil_of(&positions, &model.faces)?;
@@ -385,7 +385,7 @@ pub fn resurface(model: &CauchyModel) -> Result<Vec<DVec3>> {
         .iter()
         .map(|g| {
             stored.get(&[g.vertex, g.source, g.number]).copied().ok_or_else(|| {
-                Error::Input(format!("the model has no ghost {} for vertex {} from {}", g.number, g.vertex, g.source))
+                Error::input(format!("the model has no ghost {} for vertex {} from {}", g.number, g.vertex, g.source))
             })
         })
         .collect::<Result<_>>()?;

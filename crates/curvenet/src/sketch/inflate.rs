@@ -116,13 +116,13 @@ fn resample(points: &[DVec2], closed: bool, d: f64) -> Vec<DVec2> {
 /// Inflates a sketch's outlines (see the module docs).
 pub fn inflate(paths: &[SketchPath], o: &InflateOptions) -> Result<Inflated> {
     if !(1..=3).contains(&o.order) {
-        return Err(Error::Usage(format!("order {} is not 1, 2 or 3", o.order)));
+        return Err(Error::usage(format!("order {} is not 1, 2 or 3", o.order)));
     }
     if !(o.angle.is_finite() && o.angle.abs() <= 180.0) {
-        return Err(Error::Usage(format!("angle {} is not in [-180, 180] degrees", o.angle)));
+        return Err(Error::usage(format!("angle {} is not in [-180, 180] degrees", o.angle)));
     }
     if o.vertices < 50 {
-        return Err(Error::Usage(format!("{} vertices is too few (at least 50)", o.vertices)));
+        return Err(Error::usage(format!("{} vertices is too few (at least 50)", o.vertices)));
     }
     // The outline: the closed path of largest area, made counter-clockwise.
     let outline = paths
@@ -131,14 +131,14 @@ pub fn inflate(paths: &[SketchPath], o: &InflateOptions) -> Result<Inflated> {
         .filter(|(_, p)| p.closed && p.points.len() >= 3)
         .max_by(|a, b| polygon_signed_area(&a.1.points).abs().total_cmp(&polygon_signed_area(&b.1.points).abs()))
         .map(|(i, _)| i)
-        .ok_or_else(|| Error::Input("the sketch has no closed path to bound the surface".into()))?;
+        .ok_or_else(|| Error::input("the sketch has no closed path to bound the surface"))?;
     let mut outer = paths[outline].points.clone();
     if polygon_signed_area(&outer) < 0.0 {
         outer.reverse();
     }
     let area = polygon_signed_area(&outer);
     if !(area > 0.0) {
-        return Err(Error::Input(format!("line {}: the outline encloses no area", paths[outline].line)));
+        return Err(Error::input(format!("line {}: the outline encloses no area", paths[outline].line)));
     }
     let kinds: Vec<PathKind> = paths
         .iter()
@@ -155,7 +155,7 @@ pub fn inflate(paths: &[SketchPath], o: &InflateOptions) -> Result<Inflated> {
         .collect();
     for (i, p) in paths.iter().enumerate() {
         if i != outline && p.points.iter().any(|&q| !point_in_polygon(q, &outer)) {
-            return Err(Error::Input(format!(
+            return Err(Error::input(format!(
                 "line {}: a path leaves the outline (line {}); every path must lie inside the closed outline",
                 p.line, paths[outline].line
             )));
@@ -190,7 +190,7 @@ pub fn inflate(paths: &[SketchPath], o: &InflateOptions) -> Result<Inflated> {
             .iter()
             .map(|q| cdt.insert(Point2::new(q.x, q.y)))
             .collect::<std::result::Result<_, _>>()
-            .map_err(|e| Error::Input(format!("line {}: a point cannot be triangulated ({e:?})", p.line)))?;
+            .map_err(|e| Error::input(format!("line {}: a point cannot be triangulated ({e:?})", p.line)))?;
         let m = handles.len();
         let edges = if p.closed { m } else { m - 1 };
         for k in 0..edges {
@@ -199,7 +199,7 @@ pub fn inflate(paths: &[SketchPath], o: &InflateOptions) -> Result<Inflated> {
                 continue;
             }
             if !cdt.can_add_constraint(a, b) {
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "line {}: the path crosses another path; paths may only touch at their samples",
                     p.line
                 )));
@@ -218,7 +218,7 @@ pub fn inflate(paths: &[SketchPath], o: &InflateOptions) -> Result<Inflated> {
             .with_max_additional_vertices(expected),
     );
     if !result.refinement_complete {
-        return Err(Error::Numerical(format!(
+        return Err(Error::numerical(format!(
             "the sketch's triangulation did not finish within {expected} new vertices"
         )));
     }
@@ -356,7 +356,7 @@ pub fn read_sketch(path: &std::path::Path) -> Result<Vec<SketchPath>> {
     let bb = crate::geom::Aabb::of(coarse.iter().flat_map(|p| p.points.iter().map(|q| DVec3::new(q.x, q.y, 0.0))));
     let size = bb.diagonal();
     if !(size > 0.0 && size.is_finite()) {
-        return Err(Error::Input(format!("{source}: the sketch has no extent")));
+        return Err(Error::input(format!("{source}: the sketch has no extent")));
     }
     super::svg::read_svg(&text, &source, size / 1000.0)
 }

@@ -108,13 +108,13 @@ impl Cholesky {
     /// Factorises `q` with the elimination order `order` (`order[k]`: the unknown eliminated
     /// `k`-th), for orderings computed elsewhere (METIS, a previous run).
     ///
-    /// Errors with [`Error::Usage`] when `order` is not a permutation of the unknowns.
+    /// Errors with [`Error::usage`] when `order` is not a permutation of the unknowns.
     pub fn factor_permuted(q: &Csc, what: &str, order: &[u32]) -> Result<Self> {
         let mut seen = vec![false; q.ncols];
         let valid = order.len() == q.ncols
             && order.iter().all(|&v| (v as usize) < q.ncols && !std::mem::replace(&mut seen[v as usize], true));
         if !valid {
-            return Err(Error::Usage(format!(
+            return Err(Error::usage(format!(
                 "{what}: the elimination order is not a permutation of the {} unknowns",
                 q.ncols
             )));
@@ -144,7 +144,7 @@ impl Cholesky {
         let symbolic = with_faer(q, what, |a| {
             factorize_symbolic_cholesky(a.symbolic(), Side::Lower, ord, CholeskySymbolicParams::default())
         })?
-        .map_err(|e| Error::Numerical(format!("{what}: symbolic factorisation failed ({e:?})")))?;
+        .map_err(|e| Error::numerical(format!("{what}: symbolic factorisation failed ({e:?})")))?;
         let split = match symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(sym) if q.ncols >= TREE_SOLVE_FROM => tree_solve::split(sym),
             _ => None,
@@ -240,7 +240,7 @@ fn fingerprint(q: &Csc) -> u64 {
 fn with_faer<R>(q: &Csc, what: &str, f: impl FnOnce(faer::sparse::SparseColMatRef<'_, u32, f64>) -> R) -> Result<R> {
     let col_ptr: Vec<u32> =
         q.col_ptr.iter().map(|&p| u32::try_from(p).ok()).collect::<Option<_>>().ok_or_else(|| {
-            Error::Numerical(format!("{what}: the system has too many non-zeros to index with 32 bits"))
+            Error::numerical(format!("{what}: the system has too many non-zeros to index with 32 bits"))
         })?;
     let sym = faer::sparse::SymbolicSparseColMatRef::new_checked(q.nrows, q.ncols, &col_ptr, None, &q.row_idx);
     Ok(f(faer::sparse::SparseColMatRef::new(sym, &q.values)))
@@ -262,7 +262,7 @@ fn numeric(
     #[cfg(not(feature = "parallel"))]
     let par = Par::Seq;
     let mut mem = MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
-        .map_err(|_| Error::Numerical(format!("{what}: out of memory for the factorisation")))?;
+        .map_err(|_| Error::numerical(format!("{what}: out of memory for the factorisation")))?;
     symbolic
         .factorize_numeric_llt(
             &mut values,
@@ -286,13 +286,13 @@ fn numeric(
                     .map_or_else(String::new, |j| format!(" at {}", describe(j)))
                 }
             };
-            Error::Numerical(format!(
+            Error::numerical(format!(
                 "{what}: the system is singular or indefinite{at}; the patch may have no constrained vertex, \
                  or degenerate triangles"
             ))
         })?;
     if values.iter().any(|v| !v.is_finite()) {
-        return Err(Error::Numerical(format!("{what}: the factorisation produced non-finite values")));
+        return Err(Error::numerical(format!("{what}: the factorisation produced non-finite values")));
     }
     Ok(values)
 }

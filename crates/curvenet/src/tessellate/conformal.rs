@@ -23,7 +23,7 @@ use faer::Mat;
 pub fn lscm(positions: &[DVec3], faces: &[[u32; 3]], pins: [usize; 2]) -> Result<Vec<DVec2>> {
     let n = positions.len();
     if pins[0] == pins[1] || pins.iter().any(|&p| p >= n) {
-        return Err(Error::Numerical("conformal flattening needs two distinct pinned vertices".into()));
+        return Err(Error::numerical("conformal flattening needs two distinct pinned vertices"));
     }
     let pinned = [DVec2::ZERO, DVec2::new(positions[pins[0]].distance(positions[pins[1]]), 0.0)];
     // Unknown index of each vertex (u at 2k, v at 2k + 1), or the pin it is.
@@ -109,7 +109,7 @@ pub fn lscm(positions: &[DVec3], faces: &[[u32; 3]], pins: [usize; 2]) -> Result
         };
     }
     if uv.iter().any(|p| !p.is_finite()) {
-        return Err(Error::Numerical("conformal flattening produced non-finite coordinates".into()));
+        return Err(Error::numerical("conformal flattening produced non-finite coordinates"));
     }
     Ok(uv)
 }

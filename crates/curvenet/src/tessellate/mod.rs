@@ -77,11 +77,11 @@ fn triangulate(
 ) -> Result<(Vec<[usize; 3]>, Vec<DVec2>, Vec<VRef>)> {
     let n = pts.len();
     if n < 3 {
-        return Err(Error::Topology(format!("{}: a patch needs at least 3 boundary vertices", what())));
+        return Err(Error::topology(format!("{}: a patch needs at least 3 boundary vertices", what())));
     }
     let area = polygon_signed_area(&pts);
     if !(area > 0.0) {
-        return Err(Error::Topology(format!(
+        return Err(Error::topology(format!(
             "{}: the cycle runs clockwise (or encloses no area) when projected on its plane; \
              the projection folds over or the normals disagree with the cycle",
             what()
@@ -111,9 +111,9 @@ fn triangulate(
         conflict.get_or_insert(e);
     });
     let mut cdt =
-        cdt.map_err(|e| Error::Topology(format!("{}: the projected cycle cannot be triangulated ({e:?})", what())))?;
+        cdt.map_err(|e| Error::topology(format!("{}: the projected cycle cannot be triangulated ({e:?})", what())))?;
     if cdt.num_vertices() != total {
-        return Err(Error::Topology(format!(
+        return Err(Error::topology(format!(
             "{}: two boundary vertices fall on the same point when projected on the patch's plane \
              (the cycle folds over in projection)",
             what()
@@ -121,7 +121,7 @@ fn triangulate(
     }
     if let Some([a, _]) = conflict {
         let p = if a < n { pts[a] } else { lattice.points[outline[a - n] as usize] };
-        return Err(Error::Topology(format!(
+        return Err(Error::topology(format!(
             "{}: the cycle crosses itself when projected on its plane (near ({:.4}, {:.4})); \
              the patch is too deep or twisted for a planar projection: add a curve that splits it",
             what(),
@@ -140,7 +140,7 @@ fn triangulate(
             .with_max_additional_vertices(expected),
     );
     if !result.refinement_complete {
-        return Err(Error::Numerical(format!(
+        return Err(Error::numerical(format!(
             "{}: the quality triangulation did not finish within {expected} new vertices \
              (very small angles between curves at a node?)",
             what()
@@ -396,7 +396,7 @@ fn collect(
     for t in tris {
         let r = [map[t[0]], map[t[1]], map[t[2]]];
         if r[0] == r[1] || r[1] == r[2] || r[0] == r[2] {
-            return Err(Error::Topology(format!(
+            return Err(Error::topology(format!(
                 "{}: the patch is too narrow for the spacing (a triangle would join a vertex to itself); lower the spacing",
                 what()
             )));
@@ -419,7 +419,7 @@ fn tessellate_disk(g: &Graph, res: &Resampled, hs: &[HalfEdge], d: f64, index: u
     let area_n = polygon_vector_area(&p3).normalize_or_zero();
     let n = if mean_n.length() > 0.1 && mean_n.dot(area_n) > 0.0 { mean_n.normalize() } else { area_n };
     if n == DVec3::ZERO {
-        return Err(Error::Topology(format!("{}: the cycle encloses no area", what())));
+        return Err(Error::topology(format!("{}: the cycle encloses no area", what())));
     }
     let map: Vec<VRef> = ids.iter().map(|&i| VRef::Curve(i)).collect();
     let project = |n: DVec3| {
@@ -441,10 +441,10 @@ fn tessellate_disk(g: &Graph, res: &Resampled, hs: &[HalfEdge], d: f64, index: u
     let first = match corner_turned(&p3, &n3, &inner, &pts) {
         None => match triangulate(pts, map.clone(), d, &what) {
             Ok((tris, pos2, map)) => return collect(tris, &pos2, &map, |q| center + q.x * e1 + q.y * e2, &what),
-            Err(e @ Error::Topology(_)) => e,
+            Err(e @ Error::Topology { .. }) => e,
             Err(e) => return Err(e),
         },
-        Some(i) => Error::Topology(format!(
+        Some(i) => Error::topology(format!(
             "{}: the cycle's corner at {} turns the other way in projection than on the surface (a sharp \
              corner across a crease); the patch cannot be triangulated in a plane",
             what(),
@@ -800,7 +800,7 @@ fn merge(res: &Resampled, parts: Vec<Result<PatchMesh>>) -> Result<Mesh> {
     }
     mesh.on_boundary.resize(mesh.positions.len(), false);
     if mesh.positions.len() > u32::MAX as usize {
-        return Err(Error::Usage("the mesh would exceed 4 billion vertices; increase the spacing".into()));
+        return Err(Error::usage("the mesh would exceed 4 billion vertices; increase the spacing"));
     }
     // Every curve vertex must be used by some face (a vertex left out means a broken patch).
     let mut used = vec![false; mesh.positions.len()];
@@ -810,7 +810,7 @@ fn merge(res: &Resampled, parts: Vec<Result<PatchMesh>>) -> Result<Mesh> {
         }
     }
     if let Some(i) = used.iter().position(|u| !u) {
-        return Err(Error::Topology(format!(
+        return Err(Error::topology(format!(
             "vertex {i} at {} is not part of any patch (a curve that bounds no patch?)",
             fmt_point(mesh.positions[i])
         )));

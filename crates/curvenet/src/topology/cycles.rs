@@ -108,7 +108,7 @@ fn conormal_score(p: &[DVec3], n: &[DVec3], dir: impl Fn(DVec3) -> DVec3) -> f64
 pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
     match find_patches_or_slits(g, splines)? {
         Ok(patches) => Ok(patches),
-        Err(slits) => Err(Error::Topology(format!(
+        Err(slits) => Err(Error::topology(format!(
             "{} has the same patch on both sides: a curve that dangles into a patch or cuts it open \
              cannot be surfaced; remove it or connect both of its ends to other curves (if it crosses \
              another curve without meeting it at a node, raise the snapping tolerance)",
@@ -139,7 +139,7 @@ pub fn find_patches_or_slits(
             } else {
                 "extend it to a crossing with another curve, tag the surface border as boundary, or remove it"
             };
-            return Err(Error::Topology(format!(
+            return Err(Error::topology(format!(
                 "{} ends at {} without meeting another curve: a dangling segment cannot bound a patch; {what}",
                 g.labels[seg.curve],
                 g.describe_node(v)
@@ -152,7 +152,7 @@ pub fn find_patches_or_slits(
         if boundary.len() != 0 && boundary.len() != 2 {
             let mut names: Vec<&str> = boundary.iter().map(|&s| g.labels[g.segments[s].curve].as_str()).collect();
             names.dedup();
-            return Err(Error::Topology(format!(
+            return Err(Error::topology(format!(
                 "{} boundary segment ends meet at {} ({}): the surface is not a 2-manifold there — a segment \
                  shared by more than two patches, or borders that touch. A border passes through a node once",
                 boundary.len(),
@@ -174,7 +174,7 @@ pub fn find_patches_or_slits(
             let d = if at_start { sp.tangent(sp.knot(seg.first), true) } else { -sp.tangent(sp.knot(seg.last), false) };
             let proj = d - normal * d.dot(normal);
             if proj.length() <= 1e-3 * d.length() || !proj.is_finite() {
-                return Err(Error::Topology(format!(
+                return Err(Error::topology(format!(
                     "{} leaves {} along the node's normal: normals must be perpendicular to the curves",
                     g.labels[seg.curve],
                     g.describe_node(v)
@@ -219,7 +219,7 @@ pub fn find_patches_or_slits(
                     break;
                 }
                 if face.len() > 2 * ns {
-                    return Err(Error::Topology("internal error: face tracing did not close".into()));
+                    return Err(Error::topology("internal error: face tracing did not close"));
                 }
             }
             faces.push(face);
@@ -272,14 +272,14 @@ pub fn find_patches_or_slits(
         };
         match (real(true), real(false)) {
             (true, true) => {
-                return Err(Error::Topology(format!(
+                return Err(Error::topology(format!(
                     "{} is tagged as boundary but has patches on both sides; remove the boundary tag from {}",
                     g.describe_segment(s),
                     g.labels[seg.curve]
                 )))
             }
             (false, false) => {
-                return Err(Error::Topology(format!(
+                return Err(Error::topology(format!(
                     "{} is tagged as boundary but bounds no patch: near it the network is not a 2-manifold \
                      (a segment shared by more than two patches, or normals that disagree in orientation)",
                     g.describe_segment(s)
@@ -307,7 +307,7 @@ pub fn find_patches_or_slits(
             (0..ns).filter(in_part).all(|s| ends[g.segments[s].start].len() == 2 && ends[g.segments[s].end].len() == 2);
         if fs.len() != 2 || !simple {
             let seg = (0..ns).find(in_part).unwrap_or(0);
-            return Err(Error::Topology(format!(
+            return Err(Error::topology(format!(
                 "the boundary curves around {} form a network without interior curves that is not a single loop; \
                  tag only the outer border as boundary",
                 g.describe_segment(seg)
@@ -364,7 +364,7 @@ pub fn find_patches_or_slits(
             let a = polygon_vector_area(&l.points);
             let s = a.dot(mean_n) / (a.length() * mean_n.length()).max(f64::MIN_POSITIVE);
             if s.abs() < 0.05 {
-                return Err(Error::Topology(format!(
+                return Err(Error::topology(format!(
                     "cannot tell on which side of the boundary loop through {} the surface lies: its normals are \
                      tangent to the plane of the loop and point nowhere near its inside; give another loop for a tube \
                      or tilt the normals",
@@ -392,14 +392,14 @@ pub fn find_patches_open(g: &mut Graph, splines: &[CurveSpline]) -> Result<(Vec<
             Err(slits) => {
                 // A boundary segment bounds the surface: leaving it out would open a hole.
                 if let Some(&s) = slits.iter().find(|&&s| g.segments[s].boundary) {
-                    return Err(Error::Topology(format!(
+                    return Err(Error::topology(format!(
                         "{} is a boundary segment with the same patch on both sides: the boundary cuts into the \
                          surface; remove its boundary tag or connect it",
                         g.describe_segment(s)
                     )));
                 }
                 for &s in slits.iter().take(10) {
-                    warnings.push(crate::error::Warning(format!(
+                    warnings.push(crate::error::Warning::new(format!(
                         "{} has the same patch on both sides (a curve that cuts into a patch, or curves snapped \
                          into a bridge): it was left out of the surface",
                         g.describe_segment(s)
@@ -411,5 +411,5 @@ pub fn find_patches_open(g: &mut Graph, splines: &[CurveSpline]) -> Result<(Vec<
             }
         }
     }
-    Err(Error::Topology("internal error: leaving out slits did not converge".into()))
+    Err(Error::topology("internal error: leaving out slits did not converge"))
 }

@@ -331,7 +331,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
             if extent > 8.0 * snap {
                 let others: Vec<&str> = locs.iter().filter(|l| l.0 != c).map(|l| labels[l.0].as_str()).collect();
                 let other = others.first().copied().unwrap_or("itself");
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "{} runs within the snapping tolerance ({snap:.3e}) of {other} for a length of {extent:.3e} near {}: \
                      overlapping or coincident curves cannot be surfaced; remove the duplicate or lower \"snap\"",
                     labels[c],
@@ -388,7 +388,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
                         }
                     }
                     if probed && together {
-                        return Err(Error::Input(format!(
+                        return Err(Error::input(format!(
                             "{} runs within the snapping tolerance ({snap:.3e}) of {} near {}: overlapping or coincident \
                              curves (or curves touching at a very shallow angle) cannot be surfaced; remove the duplicate \
                              or lower \"snap\"",
@@ -406,7 +406,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
             for b in a + 1..normals.len() {
                 let cos = normals[a].dot(normals[b]);
                 if cos < 0.0 {
-                    return Err(Error::Input(format!(
+                    return Err(Error::input(format!(
                         "{} and {} meet at {} with normals {:.0}° apart: one of them points inward. \
                          Normals must point to the outside of the surface on every curve; flip the normals of one curve",
                         labels[passages[a].0],
@@ -540,7 +540,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
         let m = sc.points.len();
         for i in 1..m {
             if sc.points[i].distance(sc.points[i - 1]) <= 1e-12 * total_scale(&sc.points) {
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "{}: two nodes fall on the same point {} (crossings closer than the sampling); resample the curve more finely or lower \"snap\"",
                     labels[c],
                     fmt_point(sc.points[i])

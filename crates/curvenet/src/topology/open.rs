@@ -78,7 +78,7 @@ pub fn cover_detached_holes(g: &mut Graph, attached: &[bool]) -> Vec<Warning> {
                 .iter()
                 .find(|seg| seg.curve == c)
                 .map_or(crate::geom::DVec3::ZERO, |seg| g.nodes[seg.start].position);
-            Warning(format!(
+            Warning::new(format!(
                 "{} (boundary curve) is no longer reached by other curves (the curves that reached it were left out); \
                  the hole it bounds near {} cannot be cut out of the patch around it and was covered (the boundary \
                  curve was left out of the surface)",
@@ -142,7 +142,7 @@ fn trim_dangling_only(g: &mut Graph) -> Result<Vec<Warning>> {
         let Some(v) = stop else { continue };
         let kept = g.segments.iter().enumerate().any(|(s, seg)| seg.curve == c && !removed[s]);
         let what = if g.curves[c].boundary { "boundary curve" } else { "curve" };
-        warnings.push(Warning(if kept {
+        warnings.push(Warning::new(if kept {
             format!(
                 "{} ({what}) has a dangling end that meets no other curve: the part beyond {} at {} bounds no \
                  patch and was left out of the surface",
@@ -159,10 +159,10 @@ fn trim_dangling_only(g: &mut Graph) -> Result<Vec<Warning>> {
         }));
     }
     if removed.iter().all(|&r| r) {
-        return Err(Error::Topology(format!(
+        return Err(Error::topology(format!(
             "no curves of the network bound a patch: every curve dangles or meets no other ({}). Curves must \
              cross each other (or end on each other) to enclose patches",
-            warnings.iter().map(|w| w.0.split(" (").next().unwrap_or("").to_string()).collect::<Vec<_>>().join(", ")
+            warnings.iter().map(|w| w.message.split(" (").next().unwrap_or("").to_string()).collect::<Vec<_>>().join(", ")
         )));
     }
     let gone: Vec<usize> = (0..ns).filter(|&s| removed[s]).collect();

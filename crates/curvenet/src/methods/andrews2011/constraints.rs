@@ -79,7 +79,7 @@ pub struct NetworkAttributes {
 }
 
 fn number_or_list(v: Option<&Value>, n: usize, field: &str, curve: usize, source: &str) -> Result<Vec<f64>> {
-    let bad = |what: String| Error::Input(format!("{source}: curve {curve}: \"{field}\" {what}"));
+    let bad = |what: String| Error::input(format!("{source}: curve {curve}: \"{field}\" {what}"));
     match v {
         None | Some(Value::Null) => Ok(vec![0.0; n]),
         Some(Value::Number(x)) => {
@@ -116,7 +116,7 @@ impl NetworkAttributes {
         let curves = v
             .get("curves")
             .and_then(Value::as_array)
-            .ok_or_else(|| Error::Input(format!("{source}: no \"curves\" list")))?;
+            .ok_or_else(|| Error::input(format!("{source}: no \"curves\" list")))?;
         let mut out = Vec::with_capacity(curves.len());
         for (ci, c) in curves.iter().enumerate() {
             let points: Vec<DVec3> = c
@@ -135,11 +135,11 @@ impl NetworkAttributes {
             let kind = match c.get("kind") {
                 None | Some(Value::Null) => Kind::Cauchy,
                 Some(Value::String(s)) => Kind::from_name(s).ok_or_else(|| {
-                    Error::Input(format!(
+                    Error::input(format!(
                         "{source}: curve {ci}: unknown \"kind\" \"{s}\" (expected cauchy, position or inactive)"
                     ))
                 })?,
-                Some(_) => return Err(Error::Input(format!("{source}: curve {ci}: \"kind\" must be a string"))),
+                Some(_) => return Err(Error::input(format!("{source}: curve {ci}: \"kind\" must be a string"))),
             };
             let sharpness = number_or_list(c.get("sharpness"), n, "sharpness", ci, source)?
                 .into_iter()
@@ -147,7 +147,7 @@ impl NetworkAttributes {
                 .collect();
             let stretch = number_or_list(c.get("stretch"), n, "stretch", ci, source)?;
             if let Some(i) = stretch.iter().position(|&s| s <= -1.0) {
-                return Err(Error::Input(format!(
+                return Err(Error::input(format!(
                     "{source}: curve {ci}: \"stretch\" {} at sample {i} is ≤ −1 (the tangent would vanish or flip)",
                     stretch[i]
                 )));
@@ -210,7 +210,7 @@ pub fn curve_constraints(
     let mut params = vec![None; n];
     if let Some(a) = attrs {
         if a.curves.len() != curves.len() {
-            return Err(Error::Input(format!(
+            return Err(Error::input(format!(
                 "the Cauchy attributes list {} curves, the network {}",
                 a.curves.len(),
                 curves.len()
@@ -354,7 +354,7 @@ pub fn solve_network(
     let clock = Instant::now();
     let (roles, params) = curve_constraints(mesh, curves, attrs, snap)?;
     if !roles.iter().any(|r| *r != Role::Free) {
-        return Err(Error::Input("every curve is inactive: the Cauchy system has no constraint".into()));
+        return Err(Error::input("every curve is inactive: the Cauchy system has no constraint"));
     }
     let mut stencil = Stencil::from_operators(ops, mesh.positions.clone());
     let edges = domain_edges(mesh, &roles, &params);

@@ -27,7 +27,7 @@ impl GhostBasis {
     pub fn new(system: &System, f: &Factored, positions: &[DVec3]) -> Result<Self> {
         let (nf, ng) = (system.num_free(), system.ghosts.len());
         if nf.saturating_mul(ng) > MAX_BASIS_ENTRIES {
-            return Err(Error::Usage(format!(
+            return Err(Error::usage(format!(
                 "the ghost basis would hold {nf} × {ng} entries (limit {MAX_BASIS_ENTRIES}); use a coarser mesh"
             )));
         }

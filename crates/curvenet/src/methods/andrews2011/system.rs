@@ -233,13 +233,13 @@ impl System {
     pub fn build(stencil: &Stencil, roles: &[Role], order: usize, micro: MicroWeight) -> Result<Self> {
         let n = stencil.num_vertices();
         if roles.len() != n {
-            return Err(Error::Usage(format!("{} roles for {n} vertices", roles.len())));
+            return Err(Error::usage(format!("{} roles for {n} vertices", roles.len())));
         }
         if !(1..=3).contains(&order) {
-            return Err(Error::Usage(format!("Laplacian order {order} is not 1, 2 or 3")));
+            return Err(Error::usage(format!("Laplacian order {order} is not 1, 2 or 3")));
         }
         if let Some(i) = stencil.area.iter().position(|a| !(*a > 0.0)) {
-            return Err(Error::Numerical(format!("vertex {i} has zero area: degenerate triangles around it")));
+            return Err(Error::numerical(format!("vertex {i} has zero area: degenerate triangles around it")));
         }
         let mut column = vec![u32::MAX; n];
         let mut free = Vec::new();
@@ -250,7 +250,7 @@ impl System {
             }
         }
         if free.is_empty() {
-            return Err(Error::Usage("every vertex is constrained: nothing to solve".into()));
+            return Err(Error::usage("every vertex is constrained: nothing to solve"));
         }
         // Ghost lines exist for each Cauchy vertex and each neighbour that expands its one-ring
         // (free or position vertices), numbers 1 ..= k−1.
@@ -321,9 +321,9 @@ impl System {
         let trip: Vec<Triplet<usize, usize, f64>> =
             self.a.iter().map(|&(r, c, x)| Triplet::new(r as usize, c as usize, x)).collect();
         let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trip)
-            .map_err(|e| Error::Numerical(format!("Cauchy system assembly: {e:?}")))?;
+            .map_err(|e| Error::numerical(format!("Cauchy system assembly: {e:?}")))?;
         let lu = a.sp_lu().map_err(|e| {
-            Error::Numerical(format!(
+            Error::numerical(format!(
                 "the order-{} Cauchy system is singular ({e:?}): is every patch constrained?",
                 self.order
             ))
@@ -387,7 +387,7 @@ impl System {
 pub(crate) fn check_finite(p: &[DVec3]) -> Result<()> {
     match p.iter().position(|v| !v.is_finite()) {
         Some(i) => {
-            Err(Error::Numerical(format!("Cauchy solve: vertex {i} is not finite; the system is ill-conditioned")))
+            Err(Error::numerical(format!("Cauchy solve: vertex {i} is not finite; the system is ill-conditioned")))
         }
         None => Ok(()),
     }

@@ -19,7 +19,7 @@ fn normals_are_normalised_and_duplicates_merged() {
     assert_eq!(v.curves[0].points.len(), 3);
     assert_eq!(v.curves[0].normals[0], DVec3::Z);
     assert_eq!(w.len(), 1);
-    assert!(w[0].0.contains("merged"), "{}", w[0]);
+    assert!(w[0].message.contains("merged"), "{}", w[0]);
 }
 
 #[test]
