@@ -2,24 +2,52 @@
 
 NumPy in, NumPy out, like libigl and gpytoolbox. Shapes: ``V`` (n, 3) float64 vertex
 positions, ``F`` (m, 3) int64 triangles (counter-clockwise seen from outside), curves as
-``points`` (k, 3) and ``normals`` (k, 3) float64. Options have the names of the library's
-``curvenet::Options`` and of the CLI's ``curvenet surface`` flags (``--inner-steps`` is
-``inner_steps``). Library errors raise ``ValueError`` with the library's message; arrays of
-the wrong shape raise ``ValueError``, of a non-numeric dtype ``TypeError``. The GIL is
-released during solves.
+``points`` (k, 3) and ``normals`` (k, 3) float64.
+
+Options have one set of names for the library, the command line and Python (``OPTIONS``; the
+CLI's ``--inner-steps`` is ``inner_steps``); presets ``"default"``, ``"fast"`` and
+``"paper"`` are defined by the library, and every option given overrides the preset.
+
+Errors raise :class:`Error` (a ``ValueError``) or one of its subclasses :class:`InputError`,
+:class:`TopologyError`, :class:`NumericalError`, :class:`UsageError`; their attributes
+``curve``, ``sample``, ``node``, ``segment``, ``patch``, ``vertex``, ``point`` (and ``path``,
+``line``, ``column`` for a malformed file) name the place where known, ``None`` elsewhere.
+Arrays of a non-numeric dtype raise ``TypeError``. What a run repaired or left out comes back
+as :class:`SurfacingWarning` objects in ``info["warnings"]``, and is issued through Python's
+``warnings`` module. The GIL is released during solves.
 
 >>> import curvenet
 >>> V, F, info = curvenet.surface(curvenet.example("sphere"), vertices=5000)
 """
 
 import json as _json
+import numbers as _numbers
+import warnings as _warnings
 
 from . import _curvenet
-from ._curvenet import Network, example, examples, read_mesh, read_network
+from ._curvenet import (
+    Error,
+    InputError,
+    Network,
+    NumericalError,
+    TopologyError,
+    UsageError,
+    example,
+    examples,
+    read_mesh,
+    read_network,
+)
 
 __all__ = [
+    "Error",
+    "InputError",
     "Network",
+    "NumericalError",
+    "OPTIONS",
     "Surfacer",
+    "SurfacingWarning",
+    "TopologyError",
+    "UsageError",
     "eval",
     "example",
     "examples",
@@ -29,88 +57,114 @@ __all__ = [
     "surface",
 ]
 
-_OPTION_NAMES = (
-    "method",
-    "spacing",
-    "vertices",
-    "soft",
-    "w1",
-    "patching",
-    "iterations",
-    "inner_steps",
-    "tolerance",
-    "normal_prior",
-    "energy",
-    "guide_area",
-    "guide_updates",
-    "snap",
-)
+#: The surfacing options, from the library's table: ``{name: (value_name, choices, help,
+#: default)}``. The keyword arguments of :func:`surface` and :class:`Surfacer`.
+OPTIONS = {name: (value, tuple(choices), help_, default) for name, value, choices, help_, default in
+           _curvenet._option_specs()}
+
+
+class SurfacingWarning(UserWarning):
+    """Something a run repaired, assumed or left out (a merged sample, a snapped crossing, a
+    trimmed curve, a patch on a fallback domain). ``curve``, ``sample``, ``node``, ``patch``:
+    where, or ``None``."""
+
+    def __init__(self, message, curve=None, sample=None, node=None, patch=None):
+        super().__init__(message)
+        self.message = message
+        self.curve, self.sample, self.node, self.patch = curve, sample, node, patch
+
+    def __str__(self):
+        return self.message
+
+
+def _text(name, value):
+    """An option value as the text the library parses (the command line's form)."""
+    if isinstance(value, bool):
+        raise TypeError(f"option {name} takes a number or a name, not a bool")
+    if isinstance(value, str):
+        return value
+    if isinstance(value, _numbers.Integral):
+        return str(int(value))
+    if isinstance(value, _numbers.Real):
+        return repr(float(value))
+    raise TypeError(f"option {name} takes a number or a name, not {type(value).__name__}")
 
 
 def _options(preset, given):
-    unknown = sorted(set(given) - set(_OPTION_NAMES))
+    unknown = sorted(set(given) - set(OPTIONS))
     if unknown:
-        raise TypeError(f"unknown option(s) {', '.join(unknown)}; the options are {', '.join(_OPTION_NAMES)}")
-    return _curvenet._options(preset, **given)
+        raise TypeError(f"unknown option(s) {', '.join(unknown)}; the options are {', '.join(OPTIONS)}")
+    named = [(k, _text(k, v)) for k, v in given.items() if v is not None]
+    return _curvenet._options(preset, named)
 
 
 def _result(t):
     V, F, raw = t
     info = _json.loads(raw.pop("stats_json"))
     info.update(raw)
+    info["warnings"] = [SurfacingWarning(*w) for w in info["warnings"]]
+    for w in info["warnings"]:
+        _warnings.warn(w, stacklevel=3)
     return V, F, info
 
 
-def surface(network, method="normal-control", spacing=None, vertices=None, soft=None, iterations=None,
+def surface(network, method=None, spacing=None, vertices=None, soft=None, iterations=None,
             *, preset="default", **options):
     """Surfaces ``network`` (a :class:`Network`): ``(V (n,3) float64, F (m,3) int64, info)``.
 
     ``preset``: ``"default"``, ``"fast"`` (planar patching, no 3D iteration: one
     factorisation) or ``"paper"`` (the paper's method as published); every option given (not
-    ``None``) overrides the preset: ``method`` (normal-control, biharmonic, triharmonic,
-    method4, short-paper), ``spacing`` (target edge length) or ``vertices`` (approximate
-    count, default 20000), ``soft`` (soft curve constraints, in input sample spacings),
-    ``iterations`` (3D-operator iterations, default 2), and the keyword-only ``w1``,
-    ``patching``, ``inner_steps``, ``tolerance``, ``normal_prior``, ``energy``,
-    ``guide_area``, ``guide_updates``, ``snap``.
+    ``None``) overrides the preset. The options (``OPTIONS`` has each one's help and default):
+    ``method`` (normal-control, biharmonic, triharmonic, method4, short-paper, cauchy),
+    ``spacing`` (target edge length) or ``vertices`` (approximate count, default 20000),
+    ``soft`` (soft curve constraints, in input sample spacings), ``iterations`` (3D-operator
+    iterations, default 2), and the keyword-only ``patching``, ``inner_steps``,
+    ``tolerance``, ``normal_prior``, ``energy``, ``guide_area``, ``guide_updates``, ``w1``,
+    ``snap``, ``order``, ``ghost_updates``. With ``method="cauchy"`` a network read from JSON
+    keeps its per-curve ``kind``, ``sharpness`` and ``stretch``.
 
     ``info``: the run's statistics as ``curvenet surface --stats`` writes them (``vertices``,
-    ``faces``, ``spacing``, ``timings``, ...), ``warnings`` (list of str), ``num_curve`` (the
-    first ``num_curve`` vertices lie on the curves), ``curve`` (n,) bool, ``normals`` (n,3),
-    ``mean_curvature`` (n,), ``propagated_normals`` (n,3) or ``None``.
+    ``faces``, ``spacing``, ``timings``, ...), ``warnings`` (list of
+    :class:`SurfacingWarning`), ``num_curve`` (the first ``num_curve`` vertices lie on the
+    curves), ``curve`` (n,) bool, ``normals`` (n,3), ``mean_curvature`` (n,),
+    ``propagated_normals`` (n,3) or ``None``.
     """
     given = dict(method=method, spacing=spacing, vertices=vertices, soft=soft, iterations=iterations, **options)
-    opts = _options(preset, {k: v for k, v in given.items() if v is not None})
-    return _result(_curvenet._surface(network, opts))
+    return _result(_curvenet._surface(network, _options(preset, given)))
 
 
 class Surfacer:
-    """A network prepared for repeated solves: keeps the mesh and the factorisations.
+    """A network prepared for repeated solves: keeps the mesh and the method's factorisations.
 
-    ``Surfacer(network, **options)`` takes the options of :func:`surface`; ``solve()`` returns
-    ``(V, F, info)``; ``update_normals(curve, normals (k,3))`` replaces the normals of curve
+    ``Surfacer(network, **options)`` takes the options of :func:`surface` (every method);
+    ``solve()`` returns ``(V, F, info)``; ``update_normals(curve, normals (k,3))`` and
+    ``update_points(curve, points (k,3))`` replace the normals or the samples of curve
     ``curve`` (one per sample), after which ``solve()`` reuses the factorisations (with
-    ``preset="fast"`` or ``iterations=0`` a re-solve is only triangular solves). The mesh
-    stays the one built with the first normals.
+    ``preset="fast"`` or ``iterations=0`` a re-solve is only right-hand sides and triangular
+    solves). The mesh stays the one built with the first curves.
     """
 
-    def __init__(self, network, method="normal-control", spacing=None, vertices=None, soft=None,
+    def __init__(self, network, method=None, spacing=None, vertices=None, soft=None,
                  iterations=None, *, preset="default", **options):
         given = dict(method=method, spacing=spacing, vertices=vertices, soft=soft, iterations=iterations, **options)
-        opts = _options(preset, {k: v for k, v in given.items() if v is not None})
-        self._inner = _curvenet._Surfacer(network, opts)
+        self._inner = _curvenet._Surfacer(network, _options(preset, given))
 
     def solve(self):
-        """Surfaces the network with the current normals: ``(V, F, info)`` as :func:`surface`."""
+        """Surfaces the network with the current curves: ``(V, F, info)`` as :func:`surface`."""
         return _result(self._inner.solve())
 
     def update_normals(self, curve, normals):
         """Replaces the normals of curve ``curve`` by ``normals`` ((k,3), one per sample)."""
         self._inner.update_normals(curve, normals)
 
+    def update_points(self, curve, points):
+        """Moves the samples of curve ``curve`` to ``points`` ((k,3), one per sample); the
+        network's nodes and segments must stay the same."""
+        self._inner.update_points(curve, points)
+
     @property
     def network(self):
-        """The network with the current normals."""
+        """The network with the current curves."""
         return self._inner.network
 
     @property

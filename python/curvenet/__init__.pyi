@@ -10,8 +10,38 @@ IntArray = npt.NDArray[np.int64]
 BoolArray = npt.NDArray[np.bool_]
 ArrayLike = npt.ArrayLike
 
-Method = Literal["normal-control", "biharmonic", "triharmonic", "method4", "short-paper"]
+Method = Literal["normal-control", "biharmonic", "triharmonic", "method4", "short-paper", "cauchy"]
 Preset = Literal["default", "fast", "paper"]
+
+#: ``{name: (value_name, choices, help, default)}`` of every surfacing option.
+OPTIONS: dict[str, Tuple[str, Tuple[str, ...], str, str]]
+
+class Error(ValueError):
+    """Every curvenet error; the place where known, else ``None``."""
+
+    kind: str
+    curve: Optional[int]
+    sample: Optional[int]
+    node: Optional[int]
+    segment: Optional[int]
+    patch: Optional[int]
+    vertex: Optional[int]
+    point: Optional[Tuple[float, float, float]]
+    path: Optional[str]
+    line: Optional[int]
+    column: Optional[int]
+
+class InputError(Error): ...
+class TopologyError(Error): ...
+class NumericalError(Error): ...
+class UsageError(Error): ...
+
+class SurfacingWarning(UserWarning):
+    message: str
+    curve: Optional[int]
+    sample: Optional[int]
+    node: Optional[int]
+    patch: Optional[int]
 
 class Network:
     """A curve network. ``curves``: ``(points (k,3), normals (k,3), closed, boundary)``."""
@@ -32,7 +62,7 @@ def example(name: str) -> Network: ...
 def examples() -> list[Tuple[str, str]]: ...
 def surface(
     network: Network,
-    method: Method = "normal-control",
+    method: Optional[Method] = None,
     spacing: Optional[float] = None,
     vertices: Optional[int] = None,
     soft: Optional[float] = None,
@@ -48,6 +78,8 @@ def surface(
     guide_area: Optional[Literal["mass", "surface"]] = None,
     guide_updates: Optional[int] = None,
     snap: Optional[float] = None,
+    order: Optional[int] = None,
+    ghost_updates: Optional[int] = None,
 ) -> Tuple[FloatArray, IntArray, dict[str, Any]]:
     """``(V (n,3) float64, F (m,3) int64, info)``."""
 
@@ -55,7 +87,7 @@ class Surfacer:
     def __init__(
         self,
         network: Network,
-        method: Method = "normal-control",
+        method: Optional[Method] = None,
         spacing: Optional[float] = None,
         vertices: Optional[int] = None,
         soft: Optional[float] = None,
@@ -71,10 +103,14 @@ class Surfacer:
         guide_area: Optional[Literal["mass", "surface"]] = None,
         guide_updates: Optional[int] = None,
         snap: Optional[float] = None,
+        order: Optional[int] = None,
+        ghost_updates: Optional[int] = None,
     ) -> None: ...
     def solve(self) -> Tuple[FloatArray, IntArray, dict[str, Any]]: ...
     def update_normals(self, curve: int, normals: ArrayLike) -> None:
         """``normals``: (k,3), one per sample of curve ``curve``."""
+    def update_points(self, curve: int, points: ArrayLike) -> None:
+        """``points``: (k,3), one per sample of curve ``curve``."""
     @property
     def network(self) -> Network: ...
     @property

@@ -1,5 +1,7 @@
 //! `curvenet._curvenet`: the Python extension module (PyO3 + rust-numpy). Thin glue only:
-//! arrays in and out, options by name, [`curvenet::Error`] → `ValueError`. The numerics are
+//! arrays in and out, options by name (the library's table, [`curvenet::pipeline::OPTIONS`]),
+//! [`curvenet::Error`] → `curvenet.Error` and its subclasses with the error's place as
+//! attributes (`curve`, `sample`, `node`, `segment`, `patch`, `vertex`). The numerics are
 //! the library's; the Python package `curvenet` (python/curvenet/__init__.py) wraps these
 //! functions with the documented signatures and checks array shapes and dtypes first.
 //!
@@ -7,7 +9,7 @@
 
 use curvenet::geom::DVec3;
 use curvenet::metrics::{evaluate, Reference, Truth};
-use curvenet::{GuideArea, Method, Options, Patching, Weighting};
+use curvenet::{Options, Preset};
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -15,13 +17,69 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::Path;
 
-/// The library's error as a Python `ValueError` with its message.
+pyo3::create_exception!(
+    _curvenet,
+    Error,
+    PyValueError,
+    "Every error of curvenet: a ValueError with the place as attributes."
+);
+pyo3::create_exception!(
+    _curvenet,
+    InputError,
+    Error,
+    "The input is malformed or invalid (file position, curve, sample)."
+);
+pyo3::create_exception!(
+    _curvenet,
+    TopologyError,
+    Error,
+    "The curves do not bound an oriented 2-manifold (node, segment, patch)."
+);
+pyo3::create_exception!(_curvenet, NumericalError, Error, "A system is singular or ill-conditioned (patch, vertex).");
+pyo3::create_exception!(_curvenet, UsageError, Error, "An option value or a file name cannot be used.");
+
+/// The library's error as the Python class of its kind, with the message and the ids of its
+/// place as attributes (`None` where unknown).
 fn err(e: curvenet::Error) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    Python::attach(|py| {
+        let message = e.to_string();
+        let pe = match &e {
+            curvenet::Error::Parse { .. } | curvenet::Error::Input { .. } => InputError::new_err(message),
+            curvenet::Error::Topology { .. } => TopologyError::new_err(message),
+            curvenet::Error::Numerical { .. } => NumericalError::new_err(message),
+            curvenet::Error::Usage { .. } => UsageError::new_err(message),
+            _ => Error::new_err(message),
+        };
+        let value = pe.value(py);
+        let at = e.at();
+        let (line, column, path) = match &e {
+            curvenet::Error::Parse { line, column, path, .. } => (Some(*line), Some(*column), Some(path.clone())),
+            curvenet::Error::Io { path, .. } => (None, None, Some(path.clone())),
+            _ => (None, None, None),
+        };
+        let set = || -> PyResult<()> {
+            value.setattr("kind", e.kind())?;
+            value.setattr("curve", at.curve)?;
+            value.setattr("sample", at.sample)?;
+            value.setattr("node", at.node)?;
+            value.setattr("segment", at.segment)?;
+            value.setattr("patch", at.patch)?;
+            value.setattr("vertex", at.vertex)?;
+            value.setattr("point", at.point.map(|p| (p[0], p[1], p[2])))?;
+            value.setattr("path", path)?;
+            value.setattr("line", line)?;
+            value.setattr("column", column)
+        };
+        match set() {
+            Ok(()) => pe,
+            Err(other) => other,
+        }
+    })
 }
 
+/// An argument the glue cannot use (array shapes, indices): a `curvenet.UsageError`.
 fn usage(msg: String) -> PyErr {
-    PyValueError::new_err(msg)
+    UsageError::new_err(msg)
 }
 
 /// `obj` as a C-contiguous NumPy array of float64 (`integer`: int64) with `ndim` dimensions
@@ -112,6 +170,8 @@ fn to_array(p: &[DVec3]) -> Array2<f64> {
 #[derive(Clone)]
 struct PyNetwork {
     inner: curvenet::Network,
+    /// The per-curve attributes of `method="cauchy"` when read from a JSON file.
+    attributes: Option<std::sync::Arc<curvenet::methods::andrews2011::NetworkAttributes>>,
 }
 
 #[pymethods]
@@ -131,7 +191,7 @@ impl PyNetwork {
                 boundary: *boundary,
             });
         }
-        Ok(PyNetwork { inner: curvenet::Network { curves: out, snap } })
+        Ok(PyNetwork { inner: curvenet::Network { curves: out, snap }, attributes: None })
     }
 
     /// The curves as `(points, normals, closed, boundary)` tuples (copies).
@@ -167,14 +227,17 @@ impl PyNetwork {
 
 #[pyfunction]
 fn read_network(path: &str) -> PyResult<PyNetwork> {
-    Ok(PyNetwork { inner: curvenet::io::read_network(Path::new(path)).map_err(err)? })
+    let inner = curvenet::io::read_network(Path::new(path)).map_err(err)?;
+    let attributes =
+        curvenet::methods::andrews2011::NetworkAttributes::read(Path::new(path)).map_err(err)?.map(std::sync::Arc::new);
+    Ok(PyNetwork { inner, attributes })
 }
 
 #[pyfunction]
 fn example(name: &str) -> PyResult<PyNetwork> {
     let names: Vec<&str> = curvenet::network::examples::EXAMPLES.iter().map(|e| e.0).collect();
     match curvenet::network::examples::example(name) {
-        Some(inner) => Ok(PyNetwork { inner }),
+        Some(inner) => Ok(PyNetwork { inner, attributes: None }),
         None => Err(usage(format!("unknown example \"{name}\"; the examples are: {}", names.join(", ")))),
     }
 }
@@ -184,76 +247,22 @@ fn examples() -> Vec<(&'static str, &'static str)> {
     curvenet::network::examples::EXAMPLES.to_vec()
 }
 
-/// The library options: `preset` ("default", "fast", "paper"), then every option given
-/// (not `None`) overrides it. Names as the CLI's flags.
-#[allow(clippy::too_many_arguments)]
+/// The library options: `preset` ("default", "fast", "paper"), then every option given as
+/// `(name, text)` over it ([`Options::from_named`], the command line's path too).
 #[pyfunction]
-#[pyo3(signature = (preset="default", method=None, spacing=None, vertices=None, soft=None, w1=None,
-    patching=None, iterations=None, inner_steps=None, tolerance=None, normal_prior=None, energy=None,
-    guide_area=None, guide_updates=None, snap=None))]
-fn _options(
-    preset: &str,
-    method: Option<&str>,
-    spacing: Option<f64>,
-    vertices: Option<usize>,
-    soft: Option<f64>,
-    w1: Option<f64>,
-    patching: Option<&str>,
-    iterations: Option<usize>,
-    inner_steps: Option<usize>,
-    tolerance: Option<f64>,
-    normal_prior: Option<f64>,
-    energy: Option<&str>,
-    guide_area: Option<&str>,
-    guide_updates: Option<usize>,
-    snap: Option<f64>,
-) -> PyResult<PyOptions> {
-    let mut o = match preset {
-        "default" => Options::default(),
-        "fast" => Options::fast(),
-        "paper" => Options::paper(),
-        _ => return Err(usage(format!("unknown preset \"{preset}\" (default, fast, paper)"))),
-    };
-    let bad = |what: &str, v: &str, all: &str| usage(format!("unknown {what} \"{v}\" ({all})"));
-    if let Some(m) = method {
-        let all: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
-        o.method = Method::from_name(m).ok_or_else(|| bad("method", m, &all.join(", ")))?;
-    }
-    if let Some(p) = patching {
-        o.patching = match p {
-            "planar" => Patching::Planar,
-            "conformal" => Patching::Conformal,
-            _ => return Err(bad("patching", p, "planar, conformal")),
-        };
-    }
-    if let Some(e) = energy {
-        o.energy = match e {
-            "area" => Weighting::Area,
-            "uniform" => Weighting::Uniform,
-            _ => return Err(bad("energy", e, "area, uniform")),
-        };
-    }
-    if let Some(g) = guide_area {
-        o.guide_area = match g {
-            "mass" => GuideArea::Mass,
-            "surface" => GuideArea::Surface,
-            _ => return Err(bad("guide_area", g, "mass, surface")),
-        };
-    }
-    if spacing.is_some() && vertices.is_some() {
-        return Err(usage("give spacing or vertices, not both".into()));
-    }
-    o.spacing = spacing.or(o.spacing);
-    o.vertices = vertices.or(o.vertices);
-    o.soft = soft.or(o.soft);
-    o.w1 = w1.unwrap_or(o.w1);
-    o.iterations = iterations.unwrap_or(o.iterations);
-    o.inner_steps = inner_steps.unwrap_or(o.inner_steps);
-    o.tolerance = tolerance.unwrap_or(o.tolerance);
-    o.normal_prior = normal_prior.unwrap_or(o.normal_prior);
-    o.guide_updates = guide_updates.unwrap_or(o.guide_updates);
-    o.snap = snap.or(o.snap);
-    Ok(PyOptions { inner: o })
+fn _options(preset: &str, given: Vec<(String, String)>) -> PyResult<PyOptions> {
+    let preset = Preset::from_name(preset).map_err(err)?;
+    let given: Vec<(&str, &str)> = given.iter().map(|(n, v)| (n.as_str(), v.as_str())).collect();
+    Ok(PyOptions { inner: Options::from_named(preset, &given).map_err(err)? })
+}
+
+/// The option table: `(name, value_name, choices, help, default)` per option.
+#[pyfunction]
+fn _option_specs() -> Vec<(&'static str, &'static str, Vec<&'static str>, &'static str, String)> {
+    curvenet::pipeline::OPTIONS
+        .iter()
+        .map(|s| (s.name, s.value_name, s.choices.to_vec(), s.help, s.default_text()))
+        .collect()
 }
 
 /// Resolved surfacing options (built by `curvenet._options`).
@@ -279,7 +288,9 @@ fn result<'py>(py: Python<'py>, s: curvenet::Surface) -> PyResult<Bound<'py, pyo
     let info = PyDict::new(py);
     let stats = serde_json::to_string(&s.stats).map_err(|e| usage(e.to_string()))?;
     info.set_item("stats_json", stats)?;
-    info.set_item("warnings", s.warnings.iter().map(|w| w.message.clone()).collect::<Vec<_>>())?;
+    let warnings: Vec<(String, Option<usize>, Option<usize>, Option<usize>, Option<usize>)> =
+        s.warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect();
+    info.set_item("warnings", warnings)?;
     info.set_item("num_curve", s.mesh.num_curve)?;
     info.set_item("curve", Array1::from(s.curve_flags.clone()).into_pyarray(py))?;
     info.set_item("normals", to_array(&s.normals).into_pyarray(py))?;
@@ -291,14 +302,25 @@ fn result<'py>(py: Python<'py>, s: curvenet::Surface) -> PyResult<Bound<'py, pyo
     pyo3::types::PyTuple::new(py, [v.into_any(), f.into_any(), info.into_any()])
 }
 
+/// `options` with the network's per-curve attributes for `method="cauchy"` (as the command
+/// line reads them from the same JSON file).
+fn with_attributes(network: &PyNetwork, options: &Options) -> Options {
+    let mut o = options.clone();
+    if o.cauchy.attributes.is_none() {
+        o.cauchy.attributes = network.attributes.clone();
+    }
+    o
+}
+
 #[pyfunction]
 fn _surface<'py>(
     py: Python<'py>,
     network: &PyNetwork,
     options: &PyOptions,
 ) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
-    let (net, opts) = (&network.inner, &options.inner);
-    let s = py.detach(|| curvenet::surface(net, opts)).map_err(err)?;
+    let opts = with_attributes(network, &options.inner);
+    let net = &network.inner;
+    let s = py.detach(|| curvenet::surface(net, &opts)).map_err(err)?;
     result(py, s)
 }
 
@@ -313,8 +335,9 @@ struct PySurfacer {
 impl PySurfacer {
     #[new]
     fn new(py: Python<'_>, network: &PyNetwork, options: &PyOptions) -> PyResult<Self> {
-        let (net, opts) = (&network.inner, &options.inner);
-        let inner = py.detach(|| curvenet::Surfacer::new(net, opts)).map_err(err)?;
+        let opts = with_attributes(network, &options.inner);
+        let net = &network.inner;
+        let inner = py.detach(|| curvenet::Surfacer::new(net, &opts)).map_err(err)?;
         Ok(PySurfacer { inner })
     }
 
@@ -329,9 +352,14 @@ impl PySurfacer {
         self.inner.update_normals(curve, &n).map_err(err)
     }
 
+    fn update_points(&mut self, curve: usize, points_: Bound<'_, PyAny>) -> PyResult<()> {
+        let p = points("points", &array2("points", &points_, Some(3))?)?;
+        self.inner.update_points(curve, &p).map_err(err)
+    }
+
     #[getter]
     fn network(&self) -> PyNetwork {
-        PyNetwork { inner: self.inner.network().clone() }
+        PyNetwork { inner: self.inner.network().clone(), attributes: None }
     }
 
     #[getter]
@@ -366,7 +394,9 @@ fn _harmonic<'py>(
     }
     let columns = bcv.ncols();
     let values: Vec<f64> = bcv.iter().copied().collect();
-    let x = py.detach(|| curvenet::methods::harmonic::harmonic(&positions, &faces, &fixed, &values, columns, k)).map_err(err)?;
+    let x = py
+        .detach(|| curvenet::methods::harmonic::harmonic(&positions, &faces, &fixed, &values, columns, k))
+        .map_err(err)?;
     let out = Array2::from_shape_vec((positions.len(), columns), x).map_err(|e| usage(e.to_string()))?;
     Ok(out.into_pyarray(py))
 }
@@ -452,6 +482,12 @@ fn _curvenet(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(example, m)?)?;
     m.add_function(wrap_pyfunction!(examples, m)?)?;
     m.add_function(wrap_pyfunction!(_options, m)?)?;
+    m.add_function(wrap_pyfunction!(_option_specs, m)?)?;
+    m.add("Error", m.py().get_type::<Error>())?;
+    m.add("InputError", m.py().get_type::<InputError>())?;
+    m.add("TopologyError", m.py().get_type::<TopologyError>())?;
+    m.add("NumericalError", m.py().get_type::<NumericalError>())?;
+    m.add("UsageError", m.py().get_type::<UsageError>())?;
     m.add_function(wrap_pyfunction!(_surface, m)?)?;
     m.add_function(wrap_pyfunction!(_harmonic, m)?)?;
     m.add_function(wrap_pyfunction!(_eval, m)?)?;

@@ -31,10 +31,18 @@ CASES = [
     ("bottleneck", ["--vertices", "3000", "--method", "short-paper", "--patching", "planar",
                     "--guide-updates", "2"], dict(vertices=3000, method="short-paper", patching="planar",
                                                   guide_updates=2)),
+    # The paper preset for every method the CLI's --paper changes (Andrews et al.'s own ghosts
+    # for cauchy): the same options through both front ends.
+    ("torus", ["--vertices", "3000", "--paper", "--method", "cauchy"],
+     dict(vertices=3000, preset="paper", method="cauchy")),
+    ("saddle", ["--vertices", "3000", "--paper", "--iterations", "1", "--w1", "2e5"],
+     dict(vertices=3000, preset="paper", iterations=1, w1=2e5)),
+    ("sphere", ["--vertices", "3000", "--method", "cauchy", "--order", "3", "--ghost-updates", "2"],
+     dict(vertices=3000, method="cauchy", order=3, ghost_updates=2)),
 ]
 
 
-@pytest.mark.parametrize("name,flags,kwargs", CASES, ids=[c[0] for c in CASES])
+@pytest.mark.parametrize("name,flags,kwargs", CASES, ids=[f"{c[0]}-{i}" for i, c in enumerate(CASES)])
 def test_identical_to_cli(tmp_path, name, flags, kwargs):
     net = tmp_path / f"{name}.json"
     out = tmp_path / f"{name}.ply"
@@ -120,23 +128,87 @@ def test_wrong_face_and_harmonic_arrays():
 
 
 def test_library_errors_are_value_errors(tmp_path):
-    with pytest.raises(ValueError, match="spacing -1 is not a positive distance"):
+    with pytest.raises(curvenet.UsageError, match="`spacing` takes a positive distance, not \"-1\""):
         curvenet.surface(curvenet.example("sphere"), spacing=-1)
-    with pytest.raises(ValueError, match='unknown method "bogus"'):
+    with pytest.raises(curvenet.UsageError, match='`method` takes one of normal-control.*not "bogus"'):
         curvenet.surface(curvenet.example("sphere"), method="bogus")
+    with pytest.raises(curvenet.UsageError, match="not both"):
+        curvenet.surface(curvenet.example("sphere"), spacing=0.1, vertices=100)
+    with pytest.raises(curvenet.UsageError, match="takes a whole number"):
+        curvenet.surface(curvenet.example("sphere"), iterations=1.5)
     with pytest.raises(ValueError, match="unknown example"):
         curvenet.example("nope")
     bad = tmp_path / "bad.json"
     bad.write_text('{"curves": [')
-    with pytest.raises(ValueError, match="bad.json:1"):
+    with pytest.raises(curvenet.InputError, match="bad.json:1") as e:
         curvenet.read_network(str(bad))
+    assert e.value.line == 1 and e.value.column >= 1 and e.value.path.endswith("bad.json")
+    assert e.value.kind == "parse" and e.value.curve is None
     with pytest.raises(TypeError, match="unknown option"):
         curvenet.surface(curvenet.example("sphere"), spaceing=0.1)
     # A normal that cannot be normalised: the library's message names curve and sample.
     p, n, c, b = curvenet.example("saddle").curves[1]
     n[3] = 0
-    with pytest.raises(ValueError, match="sample 3"):
+    with pytest.raises(ValueError, match="sample 3") as e:
         curvenet.surface(curvenet.Network([(p, n, c, b)]))
+    assert isinstance(e.value, curvenet.InputError) and (e.value.curve, e.value.sample) == (0, 3)
+
+
+def test_errors_carry_their_place():
+    # A NaN at curve 2, sample 40: a curvenet.InputError (a ValueError) naming both.
+    curves = curvenet.example("sphere").curves
+    p, n, c, b = curves[2]
+    p[40, 1] = np.nan
+    curves[2] = (p, n, c, b)
+    with pytest.raises(curvenet.Error) as e:
+        curvenet.surface(curvenet.Network(curves))
+    err = e.value
+    assert isinstance(err, ValueError) and isinstance(err, curvenet.InputError)
+    assert (err.curve, err.sample) == (2, 40)
+    assert err.node is None and err.patch is None
+    assert "curve 2" in str(err) and "sample 40" in str(err)
+    for cls in (curvenet.InputError, curvenet.TopologyError, curvenet.NumericalError, curvenet.UsageError):
+        assert issubclass(cls, curvenet.Error) and issubclass(cls, ValueError)
+
+
+def test_options_come_from_the_library():
+    import ast
+
+    names = set(curvenet.OPTIONS)
+    assert {"method", "spacing", "vertices", "soft", "iterations", "inner_steps", "w1", "order",
+            "ghost_updates"} <= names
+    # Every option is a keyword of surface() and Surfacer() in the type stubs, and nothing else.
+    stub = ast.parse((Path(curvenet.__file__).parent / "__init__.pyi").read_text())
+    for node in ast.walk(stub):
+        if isinstance(node, ast.FunctionDef) and node.name in ("surface", "__init__"):
+            args = {a.arg for a in node.args.args + node.args.kwonlyargs} - {"self", "network", "preset"}
+            if node.name == "surface" or "network" in {a.arg for a in node.args.args}:
+                assert args == names, (node.name, args ^ names)
+    # The CLI has a flag for each.
+    out = subprocess.run([cli(), "surface", "--help"], check=True, capture_output=True, text=True).stdout
+    for name in names:
+        assert f"--{name.replace('_', '-')} " in out, name
+    for name, (_value, choices, help_, default) in curvenet.OPTIONS.items():
+        assert len(help_) > 20 and default, name
+
+
+@pytest.mark.parametrize("method", ["normal-control", "biharmonic", "triharmonic", "method4", "short-paper",
+                                    "cauchy"])
+def test_surfacer_every_method(method):
+    net = curvenet.example("saddle")
+    s = curvenet.Surfacer(net, method=method, preset="fast", vertices=2000)
+    V0, F0, info = s.solve()
+    assert info["method"] == method and s.is_factored
+    V1, F1, _ = curvenet.surface(net, method=method, preset="fast", vertices=2000)
+    np.testing.assert_array_equal(F0, F1)
+    assert np.abs(V0 - V1).max() <= 1e-12
+    # The rim lifted where it does not meet the axes: a re-solve on the kept factorisation.
+    p = net.curves[0][0].copy()
+    p[:, 2] += 0.2 * np.sin(2 * np.arctan2(p[:, 1], p[:, 0])) ** 2
+    s.update_points(0, p)
+    V2, F2, _ = s.solve()
+    np.testing.assert_array_equal(F0, F2)
+    assert np.abs(V2 - V0).max() > 0.05
 
 
 def test_surfacer_update_normals():
@@ -159,9 +231,10 @@ def test_surfacer_update_normals():
     s.update_normals(0, n)
     V3, _, _ = s.solve()
     assert np.abs(V3 - V0).max() < 1e-12
-    with pytest.raises(ValueError, match="normals given for"):
+    with pytest.raises(curvenet.InputError, match="normals given for") as e:
         s.update_normals(0, n[1:])
-    with pytest.raises(ValueError, match="does not exist"):
+    assert e.value.curve == 0
+    with pytest.raises(curvenet.UsageError, match="does not exist"):
         s.update_normals(99, n)
 
 

@@ -5,7 +5,7 @@
 use clap::Args;
 use curvenet::network::examples::example;
 use curvenet::render::{render_panels, Coloring, Panel, Scene, View};
-use curvenet::{Error, Method, Network, Options, Patching};
+use curvenet::{Error, Method, Network, Options};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -16,7 +16,7 @@ pub struct FiguresArgs {
     #[arg(long, default_value = "docs/figures")]
     out: PathBuf,
     /// Approximate vertex count of each surface.
-    #[arg(long, value_name = "N", default_value_t = Options::DEFAULT_VERTICES)]
+    #[arg(long, value_name = "N", default_value_t = curvenet::MeshOptions::DEFAULT_VERTICES)]
     vertices: usize,
     /// The real meshes (bumpy-cube.obj, fandisk.off); their figure is skipped when missing.
     #[arg(long, value_name = "DIR", default_value = "data/meshes")]
@@ -26,19 +26,13 @@ pub struct FiguresArgs {
 /// The methods compared, as in docs/accuracy.md: the baselines with the paper's planar
 /// patching and weights, the paper's method as written, and curvenet's default.
 fn methods(vertices: usize) -> Vec<(&'static str, Options)> {
-    let planar = |method| Options {
-        method,
-        patching: Patching::Planar,
-        iterations: 0,
-        vertices: Some(vertices),
-        ..Options::default()
-    };
+    let planar = |method| Options::fast().with_method(method).with_vertices(vertices);
     vec![
         ("biharmonic", planar(Method::Biharmonic)),
         ("triharmonic", planar(Method::Triharmonic)),
         ("method (4)", planar(Method::Method4)),
-        ("[CG] normal control", Options { vertices: Some(vertices), ..Options::paper() }),
-        ("curvenet default", Options { vertices: Some(vertices), ..Options::default() }),
+        ("[CG] normal control", Options::paper().with_vertices(vertices)),
+        ("curvenet default", Options::default().with_vertices(vertices)),
     ]
 }
 
@@ -93,7 +87,7 @@ pub fn run(a: &FiguresArgs) -> Result<(), Error> {
 
     // [CG] Fig. 1: the same two circles with three sets of normals.
     let side = View { azimuth: 20.0, elevation: 15.0, zoom: 1.0 };
-    let default = Options { vertices: Some(a.vertices), ..Options::default() };
+    let default = Options::default().with_vertices(a.vertices);
     let tubes = ["cylinder", "barrel", "bottleneck"]
         .iter()
         .map(|n| Ok((*n, scene(&network(n)?, &default)?)))
@@ -107,7 +101,7 @@ pub fn run(a: &FiguresArgs) -> Result<(), Error> {
     // [CG] Fig. 5: where the propagated normals N* leave the surface's own normals.
     let sphere = network("sphere")?;
     let torus = network("torus")?;
-    let paper = Options { vertices: Some(a.vertices), ..Options::paper() };
+    let paper = Options::paper().with_vertices(a.vertices);
     let scenes = [
         ("sphere, [CG]", scene(&sphere, &paper)?),
         ("sphere, default", scene(&sphere, &default)?),
@@ -148,7 +142,7 @@ fn real_mesh_figure(dir: &Path, data: &Path, vertices: usize) -> Result<(), Erro
         let mesh = curvenet::io::read_mesh(&data.join(name))?;
         let (net, _) = sample_mesh(&mesh.positions, &mesh.faces, &opts)?;
         let source = Scene::from_mesh(mesh.as_data())?;
-        let surfaced = scene(&net, &Options { vertices: Some(vertices), ..Options::default() })?;
+        let surfaced = scene(&net, &Options::default().with_vertices(vertices))?;
         scenes.push((name, source, surfaced));
     }
     let view = View { azimuth: 35.0, elevation: 25.0, zoom: 1.0 };

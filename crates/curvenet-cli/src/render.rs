@@ -181,7 +181,7 @@ pub fn run(a: &RenderArgs) -> Result<(), Error> {
         let network = read_network(&a.input)?;
         let progress = Progress::new(a.quiet);
         let surface =
-            curvenet::surface_with_progress(&network, &options(&a.solve), &mut |s, t, d| progress.stage(s, t, d))?;
+            curvenet::surface_with_progress(&network, &options(&a.solve)?, &mut |s, t, d| progress.stage(s, t, d))?;
         for w in &surface.warnings {
             eprintln!("warning: {w}");
         }

@@ -10,9 +10,9 @@
 use crate::options::{options, SolveArgs};
 use clap::{Args, Subcommand};
 use curvenet::metrics::example_truth;
-use curvenet::network::examples::{example, torus};
 use curvenet::metrics::{distance_to_truth, DistanceStats, MeshDistance, Truth};
-use curvenet::{Error, Method, Network, Options, Patching, Surface};
+use curvenet::network::examples::{example, torus};
+use curvenet::{Error, Method, Network, Options, Surface};
 use std::fmt::Write as _;
 use std::io::Write;
 use std::path::PathBuf;
@@ -74,7 +74,7 @@ pub fn run(a: &StudyArgs) -> Result<(), Error> {
                     None => return Err(Error::usage(format!("--truth \"{spec}\": expected an analytic truth"))),
                 },
             };
-            let rows = convergence(&net, truth.as_ref(), &options(&c.solve), c.start_vertices, c.levels)?;
+            let rows = convergence(&net, truth.as_ref(), &options(&c.solve)?, c.start_vertices, c.levels)?;
             out!("{}", convergence_table(&rows, truth.is_some()));
             Ok(())
         }
@@ -109,13 +109,13 @@ fn convergence(
     start_vertices: usize,
     levels: usize,
 ) -> Result<Vec<Level>, Error> {
-    let first = curvenet::surface(net, &Options { vertices: Some(start_vertices), spacing: None, ..base.clone() })?;
+    let first = curvenet::surface(net, &base.clone().with_vertices(start_vertices))?;
     let mut spacing = first.stats.spacing;
     let mut rows = Vec::new();
     let mut previous: Option<Surface> = None;
     for _ in 0..levels.max(1) {
         let clock = Instant::now();
-        let s = curvenet::surface(net, &Options { spacing: Some(spacing), ..base.clone() })?;
+        let s = curvenet::surface(net, &base.clone().with_spacing(spacing))?;
         let seconds = clock.elapsed().as_secs_f64();
         rows.push(Level {
             spacing,
@@ -220,8 +220,12 @@ const PAPER_TORUS: [(&str, [f64; 4]); 4] = [
 ];
 
 fn variants() -> Vec<(&'static str, Options)> {
-    let planar = |method| Options { method, patching: Patching::Planar, iterations: 0, ..Options::default() };
-    let conformal = |method| Options { method, iterations: 0, ..Options::default() };
+    let planar = |method| Options::fast().with_method(method);
+    let conformal = |method| {
+        let mut o = Options::default().with_method(method);
+        o.iterate.iterations = 0;
+        o
+    };
     vec![
         ("curvenet default (normal-control, conformal patching, 3D iterations)", Options::default()),
         ("curvenet `--paper` (the paper as written)", Options::paper()),
@@ -253,7 +257,7 @@ fn table1(
         let _ = writeln!(doc, "| {name} | see above | {:.4} | {:.4} | {:.4} | {:.4} | — |", v[0], v[1], v[2], v[3]);
     }
     for (name, o) in variants() {
-        let o = Options { vertices: Some(vertices), ..o };
+        let o = o.with_vertices(vertices);
         let (s, secs) = timed(net, &o, runs)?;
         let e = distance_to_truth(&s.mesh.positions, s.mesh.num_curve, truth);
         let _ = writeln!(

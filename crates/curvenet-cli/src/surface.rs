@@ -47,9 +47,10 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
     let network = read_network(&a.input)?;
     let read = clock.elapsed().as_secs_f64();
     progress.stage("read", read, &format!("{} curves, {} samples", network.curves.len(), network.num_samples()));
-    let mut opts = options(&a.solve);
+    let mut opts = options(&a.solve)?;
     if opts.method == curvenet::Method::Cauchy {
-        opts.cauchy = curvenet::methods::andrews2011::NetworkAttributes::read(&a.input)?.map(std::sync::Arc::new);
+        opts.cauchy.attributes =
+            curvenet::methods::andrews2011::NetworkAttributes::read(&a.input)?.map(std::sync::Arc::new);
     }
     let mut surface = curvenet::surface_with_progress(&network, &opts, &mut |s, t, d| progress.stage(s, t, d))?;
     for w in &surface.warnings {

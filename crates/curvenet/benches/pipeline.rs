@@ -60,7 +60,7 @@ fn main() {
         let input = dir.join(format!("{name}.json"));
         let output = dir.join(format!("{name}.ply"));
         io::write_network(&input, &net).expect("write network");
-        let opts = Options { vertices: Some(vertices), ..Default::default() };
+        let opts = Options::default().with_vertices(vertices);
         let mut all: Vec<Timings> = Vec::new();
         let mut nv = 0;
         for _ in 0..runs {

@@ -6,11 +6,11 @@
 //!
 //! Options (after `--`): `--vertices N` (default 100000), `--runs K` (default 15).
 
-use curvenet::operators::{cotan_operators, Metric};
-use curvenet::solve::Cholesky;
-use curvenet::solve::sparse::product_lower;
 use curvenet::network::examples;
-use curvenet::{Options};
+use curvenet::operators::{cotan_operators, Metric};
+use curvenet::solve::sparse::product_lower;
+use curvenet::solve::Cholesky;
+use curvenet::Options;
 use faer::Mat;
 use std::time::Instant;
 
@@ -32,7 +32,7 @@ fn main() {
         i += 2;
     }
     let net = examples::example("sphere").expect("bundled sphere");
-    let options = Options { vertices: Some(vertices), ..Options::fast() };
+    let options = Options::fast().with_vertices(vertices);
     let mesh = curvenet::surface(&net, &options).expect("surfacing the sphere").mesh;
     let nc = mesh.num_curve;
     let ops = cotan_operators(&mesh, Metric::Planar, &mesh.positions);

@@ -49,8 +49,8 @@ pub mod topology;
 
 pub use error::{Error, Result, Warning};
 pub use geom::mesh::Mesh;
-pub use methods::{GuideArea, Method, Weighting};
+pub use methods::{Energy, GuideArea, Method, SurfacingMethod};
 pub use network::{Curve, Network};
 pub use operators::Metric;
 pub use pipeline::surfacer::Surfacer;
-pub use pipeline::{surface, surface_with_progress, Options, Patching, Stats, Surface, Timings};
+pub use pipeline::{surface, surface_with_progress, MeshOptions, Options, Patching, Preset, Stats, Surface, Timings};

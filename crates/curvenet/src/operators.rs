@@ -6,8 +6,8 @@
 //! (negative semi-definite); `L = M⁻¹ Ls`; on a smooth surface `L V ≈ −2 H N` with `H > 0` on a
 //! sphere with outward normals.
 
-use crate::geom::{DVec2, DVec3};
 use crate::geom::mesh::{LaplacianPattern, Mesh};
+use crate::geom::{DVec2, DVec3};
 use crate::solve::sparse::Csc;
 
 /// Where the cotangent weights and areas are measured.

@@ -1,7 +1,7 @@
 //! The Cauchy system of [A11] on problems with known answers.
 
-use curvenet::methods::andrews2011::{MicroWeight, Role, Stencil, System};
 use curvenet::geom::DVec3;
+use curvenet::methods::andrews2011::{MicroWeight, Role, Stencil, System};
 
 /// Cubic Hermite curve with end points `p0`, `p1` and end tangents `m0`, `m1`.
 fn hermite(t: f64, p0: DVec3, p1: DVec3, m0: DVec3, m1: DVec3) -> DVec3 {
@@ -44,7 +44,9 @@ fn polyline_converges_to_the_cubic_hermite_curve() {
 fn sphere_mean_error(order: usize, ghost_updates: usize) -> f64 {
     use curvenet::metrics::{distance_to_truth, Truth};
     let net = curvenet::network::examples::example("sphere").unwrap();
-    let opts = curvenet::Options { method: curvenet::Method::Cauchy, order, ghost_updates, ..Default::default() };
+    let mut opts = curvenet::Options::default().with_method(curvenet::Method::Cauchy);
+    opts.cauchy.order = order;
+    opts.cauchy.ghost_updates = ghost_updates;
     let s = curvenet::surface(&net, &opts).unwrap();
     let truth = Truth::parse("sphere").unwrap().unwrap();
     distance_to_truth(&s.mesh.positions, s.mesh.num_curve, &truth).mean
@@ -62,9 +64,9 @@ fn sphere_network_order_3_is_within_one_percent() {
 }
 
 mod sketch {
+    use curvenet::geom::{DVec2, DVec3};
     use curvenet::sketch::inflate::{inflate, InflateOptions, Inflated};
     use curvenet::sketch::svg::{read_svg, SketchPath};
-    use curvenet::geom::{DVec2, DVec3};
 
     pub fn circle(r: f64) -> Vec<SketchPath> {
         let n = 400;
@@ -158,9 +160,9 @@ mod sketch {
 }
 
 mod grid {
-    use curvenet::methods::andrews2011::{CauchyParams, MicroWeight, Role, Stencil, System};
-    use curvenet::geom::{DVec2, DVec3};
     use curvenet::geom::mesh::Mesh;
+    use curvenet::geom::{DVec2, DVec3};
+    use curvenet::methods::andrews2011::{CauchyParams, MicroWeight, Role, Stencil, System};
     use curvenet::operators::{cotan_operators, Metric};
 
     /// A (2n+1)² grid on [−1, 1]², cut along alternating diagonals. Vertex (i, j) is
@@ -328,8 +330,8 @@ fn bundled_sketches_inflate_to_domes() {
 }
 
 mod fitting {
-    use curvenet::sketch::fit::{fit, resurface, FitOptions};
     use curvenet::geom::DVec3;
+    use curvenet::sketch::fit::{fit, resurface, FitOptions};
     use std::collections::HashMap;
 
     /// A box [0,2]×[0,1]×[0,1] with each face an n-grid (outward, counter-clockwise).

@@ -1,12 +1,12 @@
 //! End-to-end tests of the surfacing pipeline on networks with known answers.
 
 use curvenet::curves::CurveSpline;
-use curvenet::metrics::example_truth;
-use curvenet::network::examples::example;
 use curvenet::geom::DVec3;
+use curvenet::metrics::example_truth;
 use curvenet::metrics::{distance_to_truth, DistanceStats, MeshDistance, Truth};
+use curvenet::network::examples::example;
 use curvenet::topology::{find_nodes, find_patches, Patch};
-use curvenet::{surface, Curve, Method, Network, Options, Patching};
+use curvenet::{surface, Curve, Method, Network, Options};
 use std::f64::consts::TAU;
 
 /// (nodes, segments, patches) of a network.
@@ -52,7 +52,7 @@ fn error_with(net: &Network, truth: &Truth, options: &Options) -> DistanceStats 
 }
 
 fn planar(method: Method) -> Options {
-    Options { method, patching: Patching::Planar, iterations: 0, ..Default::default() }
+    Options::fast().with_method(method)
 }
 
 #[test]
@@ -235,11 +235,11 @@ fn soft_constraints_filter_sensor_noise() {
 fn vertex_count_and_spacing_options() {
     let net = example("sphere").unwrap();
     for target in [5_000, 40_000] {
-        let s = surface(&net, &Options { vertices: Some(target), ..Default::default() }).unwrap();
+        let s = surface(&net, &Options::default().with_vertices(target)).unwrap();
         let r = s.stats.vertices as f64 / target as f64;
         assert!((0.85..1.15).contains(&r), "{target}: {}", s.stats.vertices);
     }
-    let s = surface(&net, &Options { spacing: Some(0.05), ..Default::default() }).unwrap();
+    let s = surface(&net, &Options::default().with_spacing(0.05)).unwrap();
     // Mean edge length close to the spacing.
     let mut total = 0.0;
     for f in &s.mesh.faces {

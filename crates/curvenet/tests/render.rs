@@ -7,7 +7,7 @@ use curvenet::render::{png, render, Coloring, RenderOptions, Scene, View};
 use curvenet::Options;
 
 fn scene(net: &curvenet::Network) -> Scene {
-    let options = Options { vertices: Some(8000), ..Options::default() };
+    let options = Options::default().with_vertices(8000);
     Scene::from_surface(&curvenet::surface(net, &options).expect("surfaces"))
 }
 

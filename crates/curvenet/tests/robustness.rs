@@ -2,8 +2,8 @@
 //! works too), the output invariants of `curvenet::metrics::check` on every bundled network, and the
 //! regression cases the fuzzers found (`fuzz/`), each named after what it exposed.
 
-use curvenet::metrics::check::{check_surface, Constraints};
 use curvenet::geom::DVec3;
+use curvenet::metrics::check::{check_surface, Constraints};
 use curvenet::metrics::{distance_to_truth, Truth};
 use curvenet::{Network, Options};
 
@@ -42,7 +42,7 @@ fn power_of_two_scales_give_the_same_surface_scaled() {
     let shift = DVec3::new(0.25, -0.5, 0.125);
     let truth = Truth::Sphere { center: DVec3::ZERO, radius: 1.0 };
     let scales = [2f64.powi(20), 2f64.powi(-20), 2f64.powi(40), 2f64.powi(-40)];
-    let r = runs("sphere", &Options { vertices: Some(3000), ..Options::default() }, &scales, shift, &truth);
+    let r = runs("sphere", &Options::default().with_vertices(3000), &scales, shift, &truth);
     for (k, (pos, n, _)) in r.iter().enumerate().skip(1) {
         assert_eq!(*n, r[0].1, "scale {:e}: vertex count", scales[k - 1]);
         let worst = pos.iter().zip(&r[0].0).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
@@ -61,12 +61,8 @@ fn decimal_scales_keep_the_accuracy() {
     let shift = DVec3::new(0.25, -0.5, 0.125);
     let scales = [1e6, 1e-6, 1e12, 1e-12];
     for (name, truth, options) in [
-        (
-            "sphere",
-            Truth::Sphere { center: DVec3::ZERO, radius: 1.0 },
-            Options { vertices: Some(3000), ..Options::default() },
-        ),
-        ("torus", Truth::Torus { major: 4.0, minor: 2.0 }, Options { vertices: Some(3000), ..Options::default() }),
+        ("sphere", Truth::Sphere { center: DVec3::ZERO, radius: 1.0 }, Options::default().with_vertices(3000)),
+        ("torus", Truth::Torus { major: 4.0, minor: 2.0 }, Options::default().with_vertices(3000)),
     ] {
         let r = runs(name, &options, &scales, shift, &truth);
         for (k, (_, n, err)) in r.iter().enumerate().skip(1) {
@@ -89,7 +85,8 @@ fn bundled_networks_pass_the_invariant_checker() {
             (Method::Biharmonic, Patching::Planar),
             (Method::ShortPaper, Patching::Planar),
         ] {
-            let options = Options { method, patching, vertices: Some(1500), ..Options::default() };
+            let mut options = Options::default().with_method(method).with_vertices(1500);
+            options.mesh.patching = patching;
             let s = curvenet::surface(&net, &options).unwrap_or_else(|e| panic!("{name} {method:?}: {e}"));
             let problems = check_surface(&s, &net, net.snap_tolerance(), Constraints::Hard);
             assert!(problems.is_empty(), "{name} {method:?} {patching:?}: {problems:?}");
@@ -101,7 +98,7 @@ fn bundled_networks_pass_the_invariant_checker() {
 #[test]
 fn the_invariant_checker_catches_violations() {
     let net = curvenet::network::examples::example("sphere").unwrap();
-    let good = curvenet::surface(&net, &Options { vertices: Some(800), ..Options::fast() }).unwrap();
+    let good = curvenet::surface(&net, &Options::fast().with_vertices(800)).unwrap();
     let snap = net.snap_tolerance();
     assert!(check_surface(&good, &net, snap, Constraints::Hard).is_empty());
     let broken = |f: &dyn Fn(&mut curvenet::Surface)| {
@@ -171,13 +168,9 @@ fn fuzz_non_manifold_edge_planar_soft() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../tests/data/fuzz/non-manifold-edge-planar-soft.json");
     let net = curvenet::io::read_network(&path).unwrap();
-    let options = Options {
-        soft: Some(2.0),
-        patching: curvenet::Patching::Planar,
-        iterations: 1,
-        vertices: Some(1000),
-        ..Options::default()
-    };
+    let mut options = Options { soft: Some(2.0), ..Options::default() }.with_vertices(1000);
+    options.mesh.patching = curvenet::Patching::Planar;
+    options.iterate.iterations = 1;
     match curvenet::surface(&net, &options) {
         Ok(s) => {
             let problems = check_surface(&s, &net, net.snap_tolerance(), Constraints::Soft);

@@ -45,7 +45,7 @@ fn sphere_mesh(rings: usize, bump: impl Fn(f64, f64) -> f64, z_cut: Option<f64>)
 fn sample_and_measure(p: &[DVec3], f: &[[u32; 3]], planes: usize, vertices: usize) -> (f64, curvenet::Surface) {
     let opts = SampleOptions { planes: [planes; 3], shared_nodes: false, noise: 0.01, ..Default::default() };
     let (net, _) = sample_mesh(p, f, &opts).expect("sampling");
-    let s = surface(&net, &Options { vertices: Some(vertices), ..Default::default() }).expect("surfacing");
+    let s = surface(&net, &Options::default().with_vertices(vertices)).expect("surfacing");
     let e = evaluate(
         &s.mesh.positions,
         &s.mesh.faces,
@@ -141,7 +141,7 @@ fn principal_curves_on_a_torus_and_a_sphere_are_surfaced_within_half_a_percent()
         };
         let (net, report) = sample_mesh(&p, &f, &opts).expect("sampling");
         assert!(report.sections >= 8 && report.crossings >= 16, "{name}: {report:?}");
-        let s = surface(&net, &Options { vertices: Some(6000), ..Default::default() }).expect("surfacing");
+        let s = surface(&net, &Options::default().with_vertices(6000)).expect("surfacing");
         let e = evaluate(
             &s.mesh.positions,
             &s.mesh.faces,

@@ -103,12 +103,9 @@ fn method_of(code: u32) -> Result<Method, Error> {
 /// The viewer's options: `quality` 0 is `--fast`, 1 the default; `soft` ≤ 0 means hard.
 pub fn options(method: u32, vertices: u32, soft: f64, quality: u32) -> Result<Options, Error> {
     let base = if quality == 0 { Options::fast() } else { Options::default() };
-    Ok(Options {
-        method: method_of(method)?,
-        vertices: Some(vertices.max(100) as usize),
-        soft: if soft > 0.0 { Some(soft) } else { None },
-        ..base
-    })
+    Ok(Options { soft: if soft > 0.0 { Some(soft) } else { None }, ..base }
+        .with_method(method_of(method)?)
+        .with_vertices(vertices.max(100) as usize))
 }
 
 fn flat(v: &[curvenet::geom::DVec3]) -> Vec<f32> {
@@ -186,8 +183,8 @@ pub unsafe extern "C" fn cn_surface(
 pub unsafe extern "C" fn cn_example(ptr: *const u8, len: usize) -> u32 {
     finish((|| {
         let name = text_arg(ptr, len)?;
-        let net =
-            curvenet::network::examples::example(&name).ok_or_else(|| Error::usage(format!("no example named \"{name}\"")))?;
+        let net = curvenet::network::examples::example(&name)
+            .ok_or_else(|| Error::usage(format!("no example named \"{name}\"")))?;
         set_text(curvenet::io::network_to_string(&net, NetworkFormat::Json));
         Ok(())
     })())

@@ -46,9 +46,7 @@ impl Mesh {
     /// The sparsity pattern of `Ls` for these faces (computed once).
     pub fn laplacian_pattern(&self) -> std::sync::Arc<LaplacianPattern> {
         self.pattern
-            .get_or_init(|| {
-                std::sync::Arc::new(LaplacianPattern::new(self.num_vertices(), &self.faces))
-            })
+            .get_or_init(|| std::sync::Arc::new(LaplacianPattern::new(self.num_vertices(), &self.faces)))
             .clone()
     }
 

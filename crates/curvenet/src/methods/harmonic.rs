@@ -16,10 +16,10 @@
 //! check against libigl.
 
 use crate::error::{Error, Result};
-use crate::geom::DVec3;
 use crate::geom::mesh::Mesh;
+use crate::geom::DVec3;
 use crate::operators::{cotan_operators, Metric};
-use crate::solve::Cholesky;
+use crate::solve::Eliminated;
 use faer::Mat;
 
 /// Solves `Δᵏ X = 0` (`order` k = 1, 2 or 3) on the mesh `(positions, faces)` with the rows
@@ -109,17 +109,18 @@ pub fn harmonic(
             known[(k, c)] = values[k * columns + c];
         }
     }
-    let (q, mut rhs) = if order == 1 {
+    let (q, rhs) = if order == 1 {
         // −(Q X̃)_f with Q = −Ls: (Ls X̃)_f.
         let mut y = Mat::<f64>::zeros(n, columns);
         ops.ls.mul_dense(known.as_ref(), y.as_mut());
         let rhs = Mat::<f64>::from_fn(n - nb, columns, |i, c| y[(nb + i, c)]);
         (ops.ls.restrict(nb, -1.0), rhs)
     } else {
-        crate::methods::polyharmonic::system(&ops, order, &known, nb)
+        use crate::methods::polyharmonic as poly;
+        (poly::matrix(&ops, order, nb), poly::rhs(&ops, order, &known, nb))
     };
-    let chol = Cholesky::factor(&q, &format!("harmonic system (k = {order})"))?;
-    chol.solve_in_place(rhs.as_mut());
+    let system = Eliminated::factor(&q, nb, None, &format!("harmonic system (k = {order})"))?;
+    let rhs = system.solve(rhs);
     for i in 0..n - nb {
         let v = old_of_new[nb + i];
         for c in 0..columns {

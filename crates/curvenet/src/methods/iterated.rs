@@ -24,35 +24,71 @@
 //! `max_iterations`, or — keeping the last good surface — when a triangle degenerates or the
 //! updates grow (divergence).
 
-use super::{check_finite, factor_on, known_rows, scatter, weighted_rhs, MethodResult, SolveTimings, Weighting};
-use crate::solve::timing::Instant;
+use super::normal_control::fit_weights;
+use super::{check_finite, factor_on, known_rows, scatter, Energy, MethodResult};
 use crate::error::{Error, Result};
-use crate::geom::DVec3;
 use crate::geom::mesh::Mesh;
-use crate::operators::{blended_mean_curvature, cotan_operators, vertex_normals, Metric};
-use crate::solve::Cholesky;
+use crate::geom::DVec3;
+use crate::operators::{blended_mean_curvature, cotan_operators, vertex_normals, Metric, Operators};
 use crate::solve::sparse::{product_lower, Csc};
+use crate::solve::timing::timed;
+use crate::solve::{Eliminated, LeastSquares, SolveTimings};
 use faer::Mat;
 
-/// Parameters of the iteration.
+/// The user's settings of the 3D iterations (options `iterations`, `inner_steps`,
+/// `tolerance`, `normal_prior`; docs/design.md §6).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IterationOptions {
+    /// `iterations`: at most this many iterations (each one factorisation, or two with open
+    /// borders); 0 keeps the weights of the patches' domains. Default
+    /// [`IterationOptions::DEFAULT_ITERATIONS`].
+    pub iterations: usize,
+    /// `inner_steps`: repeats of steps 2–5 on the same operators and factorisation (≥ 1).
+    /// Default [`IterationOptions::DEFAULT_INNER_STEPS`].
+    pub inner_steps: usize,
+    /// `tolerance`: stop when the largest vertex update is below `tolerance × spacing`.
+    /// Default [`IterationOptions::DEFAULT_TOLERANCE`].
+    pub tolerance: f64,
+    /// `normal_prior`: scale of the normal prior as a fraction of the mean patch size (0
+    /// disables it). Default [`IterationOptions::DEFAULT_NORMAL_PRIOR`].
+    pub normal_prior: f64,
+}
+
+impl IterationOptions {
+    /// Default `iterations`.
+    pub const DEFAULT_ITERATIONS: usize = 2;
+    /// Default `inner_steps`.
+    pub const DEFAULT_INNER_STEPS: usize = 4;
+    /// Default `tolerance` (relative to the spacing).
+    pub const DEFAULT_TOLERANCE: f64 = 3e-3;
+    /// Default `normal_prior`.
+    pub const DEFAULT_NORMAL_PRIOR: f64 = 0.16;
+}
+
+impl Default for IterationOptions {
+    fn default() -> Self {
+        IterationOptions {
+            iterations: Self::DEFAULT_ITERATIONS,
+            inner_steps: Self::DEFAULT_INNER_STEPS,
+            tolerance: Self::DEFAULT_TOLERANCE,
+            normal_prior: Self::DEFAULT_NORMAL_PRIOR,
+        }
+    }
+}
+
+/// Parameters of the iteration: the user's settings and the run's scales.
 #[derive(Clone, Copy, Debug)]
 pub struct IterationParams {
-    /// At most this many iterations (each one factorisation, or two with open borders).
-    pub max_iterations: usize,
-    /// Stop when the largest vertex update is below `tolerance × spacing`.
-    pub tolerance: f64,
-    /// Scale of the normal prior as a fraction of the mean patch size (0 disables it).
-    pub prior_scale: f64,
+    /// The user's settings.
+    pub options: IterationOptions,
     /// Mean patch size `s` (square root of the mean patch area).
     pub patch_size: f64,
     /// Target edge length (for the tolerance).
     pub spacing: f64,
     /// Energy weighting of the fit.
-    pub weighting: Weighting,
+    pub energy: Energy,
     /// Soft-constraint weight per curve vertex (scaled as in normal-control), `None` for hard.
     pub soft_weight: Option<f64>,
-    /// Repeats of steps 2–5 on the same operators and factorisation (≥ 1).
-    pub inner: usize,
 }
 
 /// Why the iteration stopped.
@@ -69,6 +105,7 @@ pub enum Stop {
 }
 
 impl Stop {
+    /// The name in the statistics (`iteration_stop`).
     pub fn name(self) -> &'static str {
         match self {
             Stop::Converged => "converged",
@@ -84,6 +121,7 @@ impl Stop {
 pub struct IterationReport {
     /// Largest vertex update of each iteration.
     pub updates: Vec<f64>,
+    /// Why it stopped.
     pub stop: Stop,
 }
 
@@ -103,168 +141,233 @@ fn degenerate(faces: &[[u32; 3]], p: &[DVec3]) -> bool {
     })
 }
 
-/// Iterates from `start` (a normal-control result on `mesh`). Returns the final surface and a
-/// report. With soft constraints the curve vertices are unknowns pulled towards their input
-/// positions in every fit (and move freely, without the normal projection).
+/// The 3D iterations as an object that keeps the symbolic analysis of its systems: the
+/// pattern never changes (same faces), so every iteration — and every later run on the same
+/// mesh ([`crate::Surfacer`]) — is a numeric refactorisation only.
+pub struct Iterated {
+    /// The parameters of every run.
+    pub params: IterationParams,
+    /// The last factorisations of the normals' system and (with open borders, uniform
+    /// weighting or soft constraints) of the fit's.
+    systems: Option<(Eliminated, Option<Eliminated>)>,
+}
+
+/// One iteration's operators and systems on the current surface `V_k`.
+struct Step<'a> {
+    mesh: &'a Mesh,
+    params: &'a IterationParams,
+    ops: Operators,
+    inv_m: Vec<f64>,
+    /// The fit's row weights.
+    w: Vec<f64>,
+    /// The first unknown row (0 with soft constraints).
+    first: usize,
+    /// The prior's weight `μ` (free vertices).
+    mu: f64,
+}
+
+impl Step<'_> {
+    /// The pull towards a target per row: the soft weight on curve vertices, `μ A_v` elsewhere.
+    fn pull(&self, k: usize) -> f64 {
+        if k < self.mesh.num_curve {
+            self.params.soft_weight.unwrap_or(0.0)
+        } else {
+            self.mu * self.ops.mass[k]
+        }
+    }
+
+    /// `q` plus the pull on the diagonal of the unknown rows.
+    fn with_prox(&self, mut q: Csc) -> Csc {
+        let prox: Vec<f64> = (self.first..self.mesh.num_vertices()).map(|k| self.pull(k)).collect();
+        q.add_diagonal(&prox);
+        q
+    }
+}
+
+impl Iterated {
+    /// The iterations with `params`, nothing factorised yet.
+    pub fn new(params: IterationParams) -> Self {
+        Iterated { params, systems: None }
+    }
+
+    /// Iterates from `start` (a normal-control result on `mesh`). Returns the final surface
+    /// and a report. With soft constraints the curve vertices are unknowns pulled towards
+    /// their input positions in every fit (and move freely, without the normal projection).
+    pub fn run(
+        &mut self,
+        mesh: &Mesh,
+        start: MethodResult,
+        t: &mut SolveTimings,
+    ) -> Result<(MethodResult, IterationReport)> {
+        let params = self.params;
+        let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
+        let mut report = IterationReport { updates: Vec::new(), stop: Stop::MaxIterations };
+        let mut current = start;
+        if n == nc || params.options.iterations == 0 {
+            report.stop = Stop::Converged;
+            return Ok((current, report));
+        }
+        // Every iteration assembles the operators on the same faces: cache their pattern.
+        let _ = mesh.laplacian_pattern();
+        for _ in 0..params.options.iterations {
+            let vk = &current.positions;
+            if degenerate(&mesh.faces, vk) {
+                report.stop = Stop::Degenerate;
+                break;
+            }
+            let (next, normals, h) = self.iteration(mesh, vk, t)?;
+            let update = next.iter().zip(vk).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+            let growing = report.updates.len() >= 2 && {
+                let u = &report.updates;
+                update > u[u.len() - 1] && u[u.len() - 1] > u[u.len() - 2]
+            };
+            report.updates.push(update);
+            if growing {
+                report.stop = Stop::Diverging;
+                break;
+            }
+            current = MethodResult { positions: next, propagated_normals: Some(normals), guide_curvature: Some(h) };
+            if update < params.options.tolerance * params.spacing {
+                report.stop = Stop::Converged;
+                break;
+            }
+        }
+        Ok((current, report))
+    }
+
+    /// One iteration from `V_k` = `vk`: operators on `V_k`, the systems (re)factorised, then
+    /// steps 2–5 `inner_steps` times. Returns the new positions, normals and guide.
+    fn iteration(
+        &mut self,
+        mesh: &Mesh,
+        vk: &[DVec3],
+        t: &mut SolveTimings,
+    ) -> Result<(Vec<DVec3>, Vec<DVec3>, Vec<f64>)> {
+        let params = &self.params;
+        let nc = mesh.num_curve;
+        let o = &params.options;
+        let mu = if o.normal_prior > 0.0 { (o.normal_prior * params.patch_size).powi(-4) } else { 0.0 };
+        let closed = !mesh.on_boundary.iter().any(|&b| b);
+        // Hard constraints eliminate the curve vertices; soft ones keep every vertex unknown,
+        // normals included: the curve normals are then pulled towards the input ones only,
+        // with the same weight as the positions (sensor normals are noisy too).
+        let first = if params.soft_weight.is_some() { 0 } else { nc };
+        let (step, q) = timed(&mut t.operators, || {
+            let ops = cotan_operators(mesh, Metric::Surface, vk);
+            let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
+            let w = fit_weights(&mesh.on_boundary, &inv_m, params.energy);
+            let step = Step { mesh, params, ops, inv_m, w, first, mu };
+            let q = step.with_prox(product_lower(&step.ops.ls, &step.inv_m, &step.ops.ls, first));
+            (step, q)
+        });
+        let kept = self.systems.take();
+        let normals_system = timed(&mut t.factor, || match &kept {
+            Some((c, _)) => c.refactor(&q, "iterated propagation system"),
+            None => factor_on(mesh, &q, first, "iterated propagation system"),
+        })?;
+        // Fit matrix: the normals' one on closed surfaces with the area weighting.
+        let fit_own = if closed && params.energy == Energy::Area {
+            None
+        } else {
+            let qf =
+                timed(&mut t.operators, || step.with_prox(product_lower(&step.ops.ls, &step.w, &step.ops.ls, first)));
+            Some(timed(&mut t.factor, || match kept.as_ref().and_then(|k| k.1.as_ref()) {
+                Some(c) => c.refactor(&qf, "iterated fit system"),
+                None => factor_on(mesh, &qf, first, "iterated fit system"),
+            })?)
+        };
+        let fit = fit_own.as_ref().unwrap_or(&normals_system);
+        let result = inner_steps(&step, vk, &normals_system, fit, t);
+        self.systems = Some((normals_system, fit_own));
+        result
+    }
+}
+
+/// Steps 2–5 of the module documentation, `inner_steps` times on the operators and
+/// factorisations of one iteration (each repeat costs only triangular solves: the normals'
+/// pull and the proximal term relax slowly).
+fn inner_steps(
+    step: &Step<'_>,
+    vk: &[DVec3],
+    normals_system: &Eliminated,
+    fit: &Eliminated,
+    t: &mut SolveTimings,
+) -> Result<(Vec<DVec3>, Vec<DVec3>, Vec<f64>)> {
+    let (mesh, params, first) = (step.mesh, step.params, step.first);
+    let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
+    let known_normals = known_rows(n, first, &[&mesh.curve_normals]);
+    let known = if first == 0 { Mat::<f64>::zeros(n, 3) } else { known_rows(n, nc, &[&mesh.positions]) };
+    let nk = vertex_normals(&mesh.faces, vk);
+    let mut v = vk.to_vec();
+    let mut normals = Vec::new();
+    let mut h = Vec::new();
+    for inner in 0..params.options.inner_steps.max(1) {
+        let clock = crate::solve::timing::Instant::now();
+        // 2. Normals, pulled towards the current surface's.
+        let prior = if inner == 0 { nk.clone() } else { vertex_normals(&mesh.faces, &v) };
+        let mut rhs = LeastSquares { a: &step.ops.ls, w: &step.inv_m, first }.rhs(None, &known_normals);
+        for k in first..n {
+            let target = if k < nc { mesh.curve_normals[k] } else { prior[k] };
+            for c in 0..3 {
+                rhs[(k - first, c)] += step.pull(k) * target[c];
+            }
+        }
+        let sol = normals_system.solve(rhs);
+        normals = mesh.curve_normals.clone();
+        normals.resize(n, DVec3::ZERO);
+        scatter(&sol, 0, first, &mut normals);
+        for (k, x) in normals.iter_mut().enumerate().skip(first) {
+            let u = x.normalize_or_zero();
+            *x = if u == DVec3::ZERO || !u.is_finite() { prior[k] } else { u };
+        }
+        // 3. Guide on the current surface.
+        h = blended_mean_curvature(&mesh.faces, &v, &normals, &step.ops.mass, &mesh.on_boundary);
+        if let Some(i) = h.iter().position(|x| !x.is_finite()) {
+            return Err(Error::numerical(format!("iterated guide is not finite at vertex {i}")).vertex(i));
+        }
+        let mut b = Mat::<f64>::zeros(n, 3);
+        for k in 0..n {
+            let s = -2.0 * step.ops.mass[k] * h[k];
+            for c in 0..3 {
+                b[(k, c)] = s * normals[k][c];
+            }
+        }
+        // 4. Fit, with the proximal pull (and the soft pull of the curve vertices).
+        let mut rhs = LeastSquares { a: &step.ops.ls, w: &step.w, first }.rhs(Some(&b), &known);
+        for k in first..n {
+            let target = if k < nc { mesh.positions[k] } else { v[k] };
+            for c in 0..3 {
+                rhs[(k - first, c)] += step.pull(k) * target[c];
+            }
+        }
+        let sol = fit.solve(rhs);
+        let mut next = v.clone();
+        scatter(&sol, 0, first, &mut next);
+        // 5. Normal component of the move from V_k only (free vertices; soft curve vertices
+        // move freely).
+        let mut moved = 0.0f64;
+        for k in 0..n {
+            if k >= nc {
+                next[k] = vk[k] + nk[k] * (next[k] - vk[k]).dot(nk[k]);
+            }
+            moved = moved.max(next[k].distance(v[k]));
+        }
+        check_finite(&next, "iterated fit")?;
+        v = next;
+        t.solve += crate::solve::timing::seconds_since(clock);
+        if moved < params.options.tolerance * params.spacing {
+            break;
+        }
+    }
+    Ok((v, normals, h))
+}
+
+/// Iterates once from `start` without keeping the factorisations (see [`Iterated::run`]).
 pub fn iterate(
     mesh: &Mesh,
     start: MethodResult,
     params: &IterationParams,
     t: &mut SolveTimings,
 ) -> Result<(MethodResult, IterationReport)> {
-    let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
-    let mut report = IterationReport { updates: Vec::new(), stop: Stop::MaxIterations };
-    let mut current = start;
-    if n == nc || params.max_iterations == 0 {
-        report.stop = Stop::Converged;
-        return Ok((current, report));
-    }
-    let mu = if params.prior_scale > 0.0 { (params.prior_scale * params.patch_size).powi(-4) } else { 0.0 };
-    let closed = !mesh.on_boundary.iter().any(|&b| b);
-    let soft = params.soft_weight.is_some();
-    let known_normals = known_rows(n, if soft { 0 } else { nc }, &[&mesh.curve_normals]);
-    let known_positions = known_rows(n, nc, &[&mesh.positions]);
-    // Every iteration assembles the operators on the same faces: cache their pattern.
-    let _ = mesh.laplacian_pattern();
-    let mut shared: Option<Cholesky> = None;
-    let mut fit_shared: Option<Cholesky> = None;
-    for _ in 0..params.max_iterations {
-        let clock = Instant::now();
-        let vk = &current.positions;
-        if degenerate(&mesh.faces, vk) {
-            report.stop = Stop::Degenerate;
-            break;
-        }
-        let ops = cotan_operators(mesh, Metric::Surface, vk);
-        let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
-        let nk = vertex_normals(&mesh.faces, vk);
-        // Hard constraints eliminate the curve vertices; soft ones keep every vertex unknown,
-        // normals included: the curve normals are then pulled towards the input ones only,
-        // with the same weight as the positions (sensor normals are noisy too).
-        let first = if soft { 0 } else { nc };
-        let pull = |k: usize| if k < nc { params.soft_weight.unwrap_or(0.0) } else { mu * ops.mass[k] };
-        let prox: Vec<f64> = (first..n).map(pull).collect();
-        let with_prox = |mut q: Csc| {
-            q.add_diagonal(&prox);
-            q
-        };
-        let q = with_prox(product_lower(&ops.ls, &inv_m, &ops.ls, first));
-        t.operators += clock.elapsed().as_secs_f64();
-        let clock = Instant::now();
-        let chol = match &shared {
-            Some(c) => c.refactor(&q, "iterated propagation system")?,
-            None => factor_on(mesh, &q, first, "iterated propagation system")?,
-        };
-        t.factor += clock.elapsed().as_secs_f64();
-
-        // 2–5, repeated `inner` times on these operators (one factorisation): the normals'
-        // pull and the proximal term relax slowly, and each repeat costs only triangular solves.
-        let w: Vec<f64> = (0..n)
-            .map(|k| match (mesh.on_boundary[k], params.weighting) {
-                (true, _) => 0.0,
-                (false, Weighting::Area) => inv_m[k],
-                (false, Weighting::Uniform) => inv_m[k] * inv_m[k],
-            })
-            .collect();
-        // Fit matrix: the normals' one on closed surfaces with the area weighting.
-        let fit_own = if closed && params.weighting == Weighting::Area {
-            None
-        } else {
-            let clock = Instant::now();
-            let qf = with_prox(product_lower(&ops.ls, &w, &ops.ls, first));
-            t.operators += clock.elapsed().as_secs_f64();
-            let clock = Instant::now();
-            let c = match &fit_shared {
-                Some(c) => c.refactor(&qf, "iterated fit system")?,
-                None => factor_on(mesh, &qf, first, "iterated fit system")?,
-            };
-            t.factor += clock.elapsed().as_secs_f64();
-            Some(c)
-        };
-        let fit = fit_own.as_ref().unwrap_or(&chol);
-        let known = if first == 0 { Mat::<f64>::zeros(n, 3) } else { known_positions.clone() };
-        let mut v = vk.clone();
-        let mut normals = Vec::new();
-        let mut h = Vec::new();
-        for step in 0..params.inner.max(1) {
-            let clock = Instant::now();
-            // 2. Normals, pulled towards the current surface's.
-            let prior = if step == 0 { nk.clone() } else { vertex_normals(&mesh.faces, &v) };
-            let mut rhs = weighted_rhs(&ops.ls, &inv_m, None, &known_normals, first);
-            for k in first..n {
-                let target = if k < nc { mesh.curve_normals[k] } else { prior[k] };
-                for c in 0..3 {
-                    rhs[(k - first, c)] += pull(k) * target[c];
-                }
-            }
-            chol.solve_in_place(rhs.as_mut());
-            normals = mesh.curve_normals.clone();
-            normals.resize(n, DVec3::ZERO);
-            scatter(&rhs, 0, first, &mut normals);
-            for (k, x) in normals.iter_mut().enumerate().skip(first) {
-                let u = x.normalize_or_zero();
-                *x = if u == DVec3::ZERO || !u.is_finite() { prior[k] } else { u };
-            }
-            // 3. Guide on the current surface.
-            h = blended_mean_curvature(&mesh.faces, &v, &normals, &ops.mass, &mesh.on_boundary);
-            if let Some(i) = h.iter().position(|x| !x.is_finite()) {
-                return Err(Error::numerical(format!("iterated guide is not finite at vertex {i}")));
-            }
-            let mut b = Mat::<f64>::zeros(n, 3);
-            for k in 0..n {
-                let s = -2.0 * ops.mass[k] * h[k];
-                for c in 0..3 {
-                    b[(k, c)] = s * normals[k][c];
-                }
-            }
-            // 4. Fit, with the proximal pull (and the soft pull of the curve vertices).
-            let mut rhs = weighted_rhs(&ops.ls, &w, Some(&b), &known, first);
-            for k in first..n {
-                let target = if k < nc { mesh.positions[k] } else { v[k] };
-                for c in 0..3 {
-                    rhs[(k - first, c)] += pull(k) * target[c];
-                }
-            }
-            fit.solve_in_place(rhs.as_mut());
-            let mut next = v.clone();
-            scatter(&rhs, 0, first, &mut next);
-            // 5. Normal component of the move from V_k only (free vertices; soft curve vertices
-            // move freely).
-            let mut moved = 0.0f64;
-            for k in 0..n {
-                if k >= nc {
-                    next[k] = vk[k] + nk[k] * (next[k] - vk[k]).dot(nk[k]);
-                }
-                moved = moved.max(next[k].distance(v[k]));
-            }
-            check_finite(&next, "iterated fit")?;
-            v = next;
-            t.solve += clock.elapsed().as_secs_f64();
-            if moved < params.tolerance * params.spacing {
-                break;
-            }
-        }
-        let update = v.iter().zip(vk).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
-        let next = v;
-        if let Some(f) = fit_own {
-            fit_shared = Some(f);
-        }
-        shared = Some(chol);
-
-        let growing = report.updates.len() >= 2 && {
-            let u = &report.updates;
-            update > u[u.len() - 1] && u[u.len() - 1] > u[u.len() - 2]
-        };
-        report.updates.push(update);
-        if growing {
-            report.stop = Stop::Diverging;
-            break;
-        }
-        current = MethodResult { positions: next, propagated_normals: Some(normals), guide_curvature: Some(h) };
-        if update < params.tolerance * params.spacing {
-            report.stop = Stop::Converged;
-            break;
-        }
-    }
-    Ok((current, report))
+    Iterated::new(*params).run(mesh, start, t)
 }

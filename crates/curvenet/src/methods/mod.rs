@@ -1,14 +1,21 @@
-//! Surfacing methods: one module per paper or baseline.
+//! Surfacing methods: one module per paper or baseline, one interface ([`SurfacingMethod`]).
 //!
 //! - [`normal_control`]: the journal paper's method ([CG] §3.4, eq. 1–3), with signed mean
 //!   curvature, hard or soft constraints ([CG] §4.5).
 //! - [`iterated`]: normal-control iterated with operators rebuilt on the 3D surface.
-//! - [`polyharmonic`]: the biharmonic `Δ²V = 0` and triharmonic `Δ³V = 0` baselines ([CG] §4.3).
+//! - [`polyharmonic`]: the biharmonic `Δ²V = 0` and triharmonic `Δ³V = 0` baselines ([CG] §4.3);
+//!   [`harmonic`]: the same systems on any mesh (libigl's `harmonic`).
 //! - [`method4`]: [CG] §4.2 eq. 4, `Δ²V = 0` with `ΔV = b₁` on the curves.
 //! - [`eg2016`]: the energy of the authors' Eurographics 2016 short paper ([EG]).
+//! - [`andrews2011`]: the order-k Laplacians with ghost-vertex Cauchy constraints of Andrews et
+//!   al. 2011 ([A11]).
 //!
 //! Every method solves for the free vertices with the curve vertices fixed (hard constraints
-//! eliminated), factoring each distinct system matrix once.
+//! eliminated) or pulled (soft), factoring each distinct system matrix once
+//! ([`crate::solve::Eliminated`]). The matrices depend on the mesh and its operators only, not
+//! on the curve positions and normals, so a method object keeps its factorisations and solves
+//! again for new curve values with right-hand sides and triangular solves
+//! ([`crate::Surfacer`]).
 
 pub mod andrews2011;
 pub mod eg2016;
@@ -18,11 +25,42 @@ pub mod method4;
 pub mod normal_control;
 pub mod polyharmonic;
 
-use crate::geom::DVec3;
+use crate::error::Result;
 use crate::geom::mesh::Mesh;
-use crate::solve::Cholesky;
+use crate::geom::DVec3;
+use crate::operators::Operators;
 use crate::solve::sparse::Csc;
+use crate::solve::{Eliminated, SolveTimings};
 use faer::Mat;
+
+/// One surfacing method on a tessellated mesh: factor once, solve for given constraint values.
+///
+/// The curve vertices `..mesh.num_curve` carry the constraint values: their positions
+/// `mesh.positions` and normals `mesh.curve_normals`. `ops` are the mesh's operators (the
+/// patches' domain metric). The first [`SurfacingMethod::solve`] factorises the method's
+/// systems; later calls on the same mesh and operators reuse them, whatever the curve values.
+pub trait SurfacingMethod: Send + Sync {
+    /// The method's name, as [`Method::name`].
+    fn name(&self) -> &'static str;
+
+    /// Solves for the free vertices with the current curve values (factorising on the first
+    /// call). Errors with [`crate::Error::Numerical`] when a system is singular or the solve
+    /// is not finite.
+    fn solve(&mut self, mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<MethodResult>;
+
+    /// Whether factorisations from an earlier solve are kept.
+    fn is_factored(&self) -> bool;
+
+    /// Frees the kept factorisations (the next solve factorises again).
+    fn release(&mut self);
+
+    /// The network's curves moved (same nodes and segments): for the methods that read the
+    /// input curves themselves (`cauchy` locates its constraint curves on the mesh by them).
+    /// `curves`: each curve's samples and closedness. The others ignore it.
+    fn set_curves(&mut self, curves: &[(Vec<DVec3>, bool)]) {
+        let _ = curves;
+    }
+}
 
 /// Which surfacing method to run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -45,6 +83,7 @@ pub enum Method {
 }
 
 impl Method {
+    /// Every method, in the order of the documentation.
     pub const ALL: [Method; 6] = [
         Method::NormalControl,
         Method::Biharmonic,
@@ -66,14 +105,15 @@ impl Method {
         }
     }
 
+    /// The method called `s` ([`Method::name`]).
     pub fn from_name(s: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|m| m.name() == s)
     }
 }
 
-/// How the terms of the normal-control energy are weighted (docs/design.md §1).
+/// How the terms of the normal-control energy are weighted (option `energy`, docs/design.md §1).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Weighting {
+pub enum Energy {
     /// `Σ_v A_v ‖(LV)_v + 2H n*‖²`: the system matrix is `Ls M⁻¹ Ls`, the same as the
     /// propagation's, so one factorisation serves both (closed surfaces).
     #[default]
@@ -82,11 +122,15 @@ pub enum Weighting {
     Uniform,
 }
 
-impl Weighting {
+impl Energy {
+    /// Every weighting.
+    pub const ALL: [Energy; 2] = [Energy::Area, Energy::Uniform];
+
+    /// The name used in options and files.
     pub fn name(self) -> &'static str {
         match self {
-            Weighting::Area => "area",
-            Weighting::Uniform => "uniform",
+            Energy::Area => "area",
+            Energy::Uniform => "uniform",
         }
     }
 }
@@ -105,6 +149,10 @@ pub enum GuideArea {
 }
 
 impl GuideArea {
+    /// Every choice.
+    pub const ALL: [GuideArea; 2] = [GuideArea::Mass, GuideArea::Surface];
+
+    /// The name used in options and files.
     pub fn name(self) -> &'static str {
         match self {
             GuideArea::Mass => "mass",
@@ -124,14 +172,6 @@ pub struct MethodResult {
     pub guide_curvature: Option<Vec<f64>>,
 }
 
-/// Wall-clock seconds spent in the numerical stages (added to by the methods).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct SolveTimings {
-    pub operators: f64,
-    pub factor: f64,
-    pub solve: f64,
-}
-
 /// `n × k` dense matrix with the rows of the known (curve) vertices `0..first` taken from
 /// `cols` and zeros elsewhere: `X̃` of the eliminated systems.
 pub(crate) fn known_rows(n: usize, first: usize, cols: &[&[DVec3]]) -> Mat<f64> {
@@ -147,31 +187,6 @@ pub(crate) fn known_rows(n: usize, first: usize, cols: &[&[DVec3]]) -> Mat<f64> 
     x
 }
 
-/// Right-hand side of the weighted least-squares system `min Σ_k w_k ‖(Ls X)_k − b_k‖²` on the
-/// unknown rows `first..`: `(Ls diag(w) (b − Ls X̃))_u`, where `X̃` holds the known rows.
-pub(crate) fn weighted_rhs(ls: &Csc, w: &[f64], target: Option<&Mat<f64>>, known: &Mat<f64>, first: usize) -> Mat<f64> {
-    let n = ls.nrows;
-    let k = known.ncols();
-    let mut y = Mat::<f64>::zeros(n, k);
-    // X̃ is zero but on the known rows: the column-wise product skips the zeros.
-    ls.mul_dense(known.as_ref(), y.as_mut());
-    for c in 0..k {
-        for i in 0..n {
-            let b = target.map_or(0.0, |t| t[(i, c)]);
-            y[(i, c)] = w[i] * (b - y[(i, c)]);
-        }
-    }
-    let mut z = Mat::<f64>::zeros(n, k);
-    ls.sym_mul_dense(y.as_ref(), z.as_mut());
-    let mut out = Mat::<f64>::zeros(n - first, k);
-    for c in 0..k {
-        for i in first..n {
-            out[(i - first, c)] = z[(i, c)];
-        }
-    }
-    out
-}
-
 /// Copies 3 columns starting at `col` of the solution (rows = unknowns `first..`) into
 /// `positions[first..]`.
 pub(crate) fn scatter(sol: &Mat<f64>, col: usize, first: usize, out: &mut [DVec3]) {
@@ -181,10 +196,10 @@ pub(crate) fn scatter(sol: &Mat<f64>, col: usize, first: usize, out: &mut [DVec3
 }
 
 /// Factorises a system on the vertices `first..` of `mesh`: along the patches when the
-/// unknowns are the free vertices (see [`Cholesky::factor_in_parts`]).
-pub(crate) fn factor_on(mesh: &Mesh, q: &Csc, first: usize, what: &str) -> crate::error::Result<Cholesky> {
+/// unknowns are the free vertices (see [`crate::solve::Cholesky::factor_in_parts`]).
+pub(crate) fn factor_on(mesh: &Mesh, q: &Csc, first: usize, what: &str) -> Result<Eliminated> {
     let parts = (first == mesh.num_curve).then(|| mesh.free_vertex_patches());
-    Cholesky::factor_in_parts(q, what, parts.as_deref())
+    Eliminated::factor(q, first, parts.as_deref(), what)
 }
 
 pub(crate) fn check_finite(p: &[DVec3], what: &str) -> crate::error::Result<()> {

@@ -22,26 +22,51 @@
 //!    one the fit's Laplacian sees.
 //! 5. Soft constraints ([CG] §4.5): `+ ω_s Σ_{s ∈ curve} ‖v_s − v*_s‖²`, all vertices unknown.
 
-use super::{
-    check_finite, factor_on, known_rows, scatter, weighted_rhs, GuideArea, MethodResult, SolveTimings, Weighting,
-};
-use crate::solve::timing::Instant;
+use super::{check_finite, factor_on, known_rows, scatter, Energy, GuideArea, MethodResult, SurfacingMethod};
 use crate::error::{Error, Result};
-use crate::geom::{fmt_point, DVec3};
 use crate::geom::mesh::Mesh;
+use crate::geom::{fmt_point, DVec3};
 use crate::operators::{blended_mean_curvature, mixed_areas, Operators};
-use crate::solve::Cholesky;
 use crate::solve::sparse::product_lower;
+use crate::solve::timing::{seconds_since, timed, Instant};
+use crate::solve::{Eliminated, LeastSquares, SolveTimings};
 use faer::Mat;
 
-/// Parameters of one normal-control solve.
+/// The user's settings of normal-control (options `energy`, `guide_area`, `guide_updates`;
+/// docs/design.md §6).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalControlOptions {
+    /// `energy`: weighting of the energy's terms. Default [`Energy::Area`].
+    pub energy: Energy,
+    /// `guide_area`: the area dividing eq. 1. Default [`GuideArea::Mass`].
+    pub guide_area: GuideArea,
+    /// `guide_updates`: how many times the guide is re-estimated on the fitted surface and the
+    /// fit repeated with the same factorisation (0: the paper). Default
+    /// [`NormalControlOptions::DEFAULT_GUIDE_UPDATES`].
+    pub guide_updates: usize,
+}
+
+impl NormalControlOptions {
+    /// Default `guide_updates`: one update removes the tangential bias of `V*` (module docs, 4).
+    pub const DEFAULT_GUIDE_UPDATES: usize = 1;
+}
+
+impl Default for NormalControlOptions {
+    fn default() -> Self {
+        NormalControlOptions {
+            energy: Energy::Area,
+            guide_area: GuideArea::Mass,
+            guide_updates: Self::DEFAULT_GUIDE_UPDATES,
+        }
+    }
+}
+
+/// Parameters of one normal-control solve: the user's settings and the soft-constraint weight
+/// derived from `soft` (see [`crate::Options::soft`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct NormalControlParams {
-    pub weighting: Weighting,
-    /// The area dividing eq. 1.
-    pub guide_area: GuideArea,
-    /// How many times the guide is re-estimated on the fitted surface (0: the paper).
-    pub guide_updates: usize,
+    /// The user's settings.
+    pub options: NormalControlOptions,
     /// Soft-constraint weight `ω_s` per curve vertex, already scaled (see
     /// [`crate::Options::soft`]); `None` for hard constraints.
     pub soft_weight: Option<f64>,
@@ -55,26 +80,48 @@ pub(crate) struct Propagation {
     /// `N*`: the biharmonic interpolant of the curve normals, normalised, `#V`.
     pub n_star: Vec<DVec3>,
     /// The factorisation of `(Ls M⁻¹ Ls)_ff` (none without free vertices).
-    pub chol: Option<Cholesky>,
+    pub system: Option<Eliminated>,
 }
 
-/// The factorisations of the normal-control systems, kept between solves on the same mesh,
-/// operators and parameters: the matrices depend on neither the curve positions nor the
-/// normals, so a solve with new curve normals costs only right-hand sides and triangular
-/// solves ([`crate::pipeline::surfacer::Surfacer`]).
+/// The normal-control method as a [`SurfacingMethod`]: keeps the factorisations of its
+/// systems between solves. The matrices depend on neither the curve positions nor the normals,
+/// so a solve with new curve values costs only right-hand sides and triangular solves
+/// ([`crate::Surfacer`]).
 #[derive(Default)]
-pub struct Factors {
+pub struct NormalControl {
+    /// The parameters of every solve.
+    pub params: NormalControlParams,
     /// `(Ls M⁻¹ Ls)_ff` of the propagation.
-    pub(crate) propagation: Option<Cholesky>,
+    propagation: Option<Eliminated>,
     /// The fit's matrix when it differs from the propagation's (open borders, uniform
     /// weighting, soft constraints).
-    pub(crate) fit: Option<Cholesky>,
+    fit: Option<Eliminated>,
 }
 
-impl Factors {
-    /// Whether a factorisation is kept.
-    pub fn is_empty(&self) -> bool {
-        self.propagation.is_none() && self.fit.is_none()
+impl NormalControl {
+    /// The method with `params`, nothing factorised yet.
+    pub fn new(params: NormalControlParams) -> Self {
+        NormalControl { params, propagation: None, fit: None }
+    }
+}
+
+impl SurfacingMethod for NormalControl {
+    fn name(&self) -> &'static str {
+        super::Method::NormalControl.name()
+    }
+
+    fn solve(&mut self, mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<MethodResult> {
+        let params = self.params;
+        normal_control_cached(mesh, ops, &params, t, self)
+    }
+
+    fn is_factored(&self) -> bool {
+        self.propagation.is_some() || self.fit.is_some()
+    }
+
+    fn release(&mut self) {
+        self.propagation = None;
+        self.fit = None;
     }
 }
 
@@ -85,58 +132,51 @@ pub(crate) fn propagate(
     mesh: &Mesh,
     ops: &Operators,
     t: &mut SolveTimings,
-    cached: Option<Cholesky>,
+    cached: Option<Eliminated>,
 ) -> Result<Propagation> {
     let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
     let mut v_star = mesh.positions.clone();
     let mut n_star: Vec<DVec3> = mesh.curve_normals.clone();
     n_star.resize(n, DVec3::ZERO);
     if n == nc {
-        return Ok(Propagation { v_star, n_star, chol: None });
+        return Ok(Propagation { v_star, n_star, system: None });
     }
     let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
+    let energy = LeastSquares { a: &ops.ls, w: &inv_m, first: nc };
     let right_hand_sides = || {
         let known = known_rows(n, nc, &[&mesh.positions, &mesh.curve_normals]);
-        weighted_rhs(&ops.ls, &inv_m, None, &known, nc)
+        energy.rhs(None, &known)
     };
-    let (chol, rhs) = match cached {
-        Some(c) => {
-            let clock = Instant::now();
-            let rhs = right_hand_sides();
-            t.operators += clock.elapsed().as_secs_f64();
-            (c, rhs)
-        }
+    let (system, rhs) = match cached {
+        Some(c) => (c, timed(&mut t.operators, right_hand_sides)),
         None => {
-            let clock = Instant::now();
-            let q = product_lower(&ops.ls, &inv_m, &ops.ls, nc);
-            t.operators += clock.elapsed().as_secs_f64();
+            let q = timed(&mut t.operators, || energy.matrix());
             // Below `PARALLEL_FROM` unknowns the numeric factorisation runs on one thread: the
             // right-hand sides are computed on the other core meanwhile. Above, the
             // factorisation uses every core and they follow it (less memory at its peak).
             // Stage times: the factorisation's own; the rest of the window to the operators.
             let factor = || {
                 let clock = Instant::now();
-                let chol = factor_on(mesh, &q, nc, "propagation system (L² V* = 0)");
-                (chol, clock.elapsed().as_secs_f64())
+                let system = factor_on(mesh, &q, nc, "propagation system (L² V* = 0)");
+                (system, seconds_since(clock))
             };
             let window = Instant::now();
-            let ((chol, factor_time), rhs) = if q.ncols < crate::solve::PARALLEL_FROM {
+            let ((system, factor_time), rhs) = if q.ncols < crate::solve::PARALLEL_FROM {
                 rayon::join(factor, right_hand_sides)
             } else {
                 let c = factor();
                 (c, right_hand_sides())
             };
             t.factor += factor_time;
-            t.operators += (window.elapsed().as_secs_f64() - factor_time).max(0.0);
-            (chol?, rhs)
+            t.operators += (seconds_since(window) - factor_time).max(0.0);
+            (system?, rhs)
         }
     };
-    let clock = Instant::now();
-    let mut sol = rhs;
-    chol.solve_in_place(sol.as_mut());
-    scatter(&sol, 0, nc, &mut v_star);
-    scatter(&sol, 3, nc, &mut n_star);
-    t.solve += clock.elapsed().as_secs_f64();
+    timed(&mut t.solve, || {
+        let sol = system.solve(rhs);
+        scatter(&sol, 0, nc, &mut v_star);
+        scatter(&sol, 3, nc, &mut n_star);
+    });
     for i in nc..n {
         let u = n_star[i].normalize_or_zero();
         if u == DVec3::ZERO || !u.is_finite() {
@@ -144,36 +184,51 @@ pub(crate) fn propagate(
                 "the propagated normal vanishes at vertex {i} near {}: the input normals around it cancel out \
                  (check that they all point outward)",
                 fmt_point(v_star[i])
-            )));
+            ))
+            .vertex(i)
+            .point(v_star[i]));
         }
         n_star[i] = u;
     }
     check_finite(&v_star, "propagation")?;
-    Ok(Propagation { v_star, n_star, chol: Some(chol) })
+    Ok(Propagation { v_star, n_star, system: Some(system) })
 }
 
-/// Runs the method on `mesh` with the operators `ops` (planar or surface metric).
+/// Runs the method once on `mesh` with the operators `ops` (planar or surface metric),
+/// without keeping its factorisations.
 pub fn normal_control(
     mesh: &Mesh,
     ops: &Operators,
     params: &NormalControlParams,
     t: &mut SolveTimings,
 ) -> Result<MethodResult> {
-    normal_control_cached(mesh, ops, params, t, &mut Factors::default())
+    NormalControl::new(*params).solve(mesh, ops, t)
 }
 
-/// [`normal_control`] with the factorisations of `factors` (from an earlier call with the
+/// The fit's row weights `w_v` ([CG] eq. 2; module docs, 3): `1/A_v` (area-weighted) or
+/// `1/A_v²` (as written), 0 on open-boundary rows.
+pub(crate) fn fit_weights(on_boundary: &[bool], inv_m: &[f64], energy: Energy) -> Vec<f64> {
+    (0..inv_m.len())
+        .map(|k| match (on_boundary[k], energy) {
+            (true, _) => 0.0,
+            (false, Energy::Area) => inv_m[k],
+            (false, Energy::Uniform) => inv_m[k] * inv_m[k],
+        })
+        .collect()
+}
+
+/// [`normal_control`] with the factorisations of `kept` (from an earlier call with the
 /// same mesh, `ops` and `params`; the curve positions and normals may differ), computing and
 /// storing those it lacks.
-pub fn normal_control_cached(
+fn normal_control_cached(
     mesh: &Mesh,
     ops: &Operators,
     params: &NormalControlParams,
     t: &mut SolveTimings,
-    factors: &mut Factors,
+    kept: &mut NormalControl,
 ) -> Result<MethodResult> {
     let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
-    let Propagation { v_star, n_star, chol: prop } = propagate(mesh, ops, t, factors.propagation.take())?;
+    let Propagation { v_star, n_star, system: prop } = propagate(mesh, ops, t, kept.propagation.take())?;
     let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
     if n == nc {
         // No free vertex: the mesh is the curves' (patches without interior points).
@@ -184,49 +239,38 @@ pub fn normal_control_cached(
 
     // 3. The fit's system: weights per row, one factorisation.
     let clock = Instant::now();
-    let w: Vec<f64> = (0..n)
-        .map(|k| match (mesh.on_boundary[k], params.weighting) {
-            (true, _) => 0.0,
-            (false, Weighting::Area) => inv_m[k],
-            (false, Weighting::Uniform) => inv_m[k] * inv_m[k],
-        })
-        .collect();
+    let w = fit_weights(&mesh.on_boundary, &inv_m, params.options.energy);
     // Hard constraints eliminate the curve vertices; soft ones keep every vertex unknown.
     let first = if params.soft_weight.is_some() { 0 } else { nc };
     let known = known_rows(n, first, &[&mesh.positions]);
+    let fit_energy = LeastSquares { a: &ops.ls, w: &w, first };
     let reuse =
-        params.soft_weight.is_none() && params.weighting == Weighting::Area && !mesh.on_boundary.iter().any(|&b| b);
-    if !(reuse && prop.is_some()) && factors.fit.is_none() {
+        params.soft_weight.is_none() && params.options.energy == Energy::Area && !mesh.on_boundary.iter().any(|&b| b);
+    if !(reuse && prop.is_some()) && kept.fit.is_none() {
         let mut q = product_lower(&ops.ls, &w, &ops.ls, first);
         if let Some(omega) = params.soft_weight {
             let mut diag = vec![0.0; n];
             diag[..nc].iter_mut().for_each(|d| *d = omega);
             q.add_diagonal(&diag);
         }
-        t.operators += clock.elapsed().as_secs_f64();
-        let clock = Instant::now();
-        let own = factor_on(
-            mesh,
-            &q,
-            first,
-            if params.soft_weight.is_some() { "soft-constrained system" } else { "fit system (L V = −2 H N*)" },
-        )?;
-        t.factor += clock.elapsed().as_secs_f64();
-        factors.fit = Some(own);
+        t.operators += seconds_since(clock);
+        let what =
+            if params.soft_weight.is_some() { "soft-constrained system" } else { "fit system (L V = −2 H N*)" };
+        kept.fit = Some(timed(&mut t.factor, || factor_on(mesh, &q, first, what))?);
     }
-    let chol = match (reuse, prop.as_ref()) {
+    let system = match (reuse, prop.as_ref()) {
         (true, Some(p)) => p,
-        _ => factors.fit.as_ref().ok_or_else(|| Error::numerical("the fit system was not factorised"))?,
+        _ => kept.fit.as_ref().ok_or_else(|| Error::internal("the fit system was not factorised"))?,
     };
 
     // 2–4. Guide from V*, fit, then guide from the fitted surface and fit again.
     let mut guide_positions = v_star;
     let mut positions = mesh.positions.clone();
     let mut h = Vec::new();
-    for _ in 0..=params.guide_updates {
+    for _ in 0..=params.options.guide_updates {
         let clock = Instant::now();
         let surface_area;
-        let area = match params.guide_area {
+        let area = match params.options.guide_area {
             GuideArea::Mass => &ops.mass,
             GuideArea::Surface => {
                 surface_area = mixed_areas(&mesh.faces, &guide_positions);
@@ -237,7 +281,8 @@ pub fn normal_control_cached(
         if let Some(i) = h.iter().position(|x| !x.is_finite()) {
             return Err(Error::numerical(format!(
                 "the mean-curvature guide is not finite at vertex {i} (a degenerate triangle?)"
-            )));
+            ))
+            .vertex(i));
         }
         let mut b = Mat::<f64>::zeros(n, 3);
         for k in 0..n {
@@ -246,7 +291,7 @@ pub fn normal_control_cached(
             b[(k, 1)] = s * n_star[k].y;
             b[(k, 2)] = s * n_star[k].z;
         }
-        let mut rhs = weighted_rhs(&ops.ls, &w, Some(&b), &known, first);
+        let mut rhs = fit_energy.rhs(Some(&b), &known);
         if let Some(omega) = params.soft_weight {
             for (k, p) in mesh.positions[..nc].iter().enumerate() {
                 rhs[(k, 0)] += omega * p.x;
@@ -254,14 +299,14 @@ pub fn normal_control_cached(
                 rhs[(k, 2)] += omega * p.z;
             }
         }
-        t.operators += clock.elapsed().as_secs_f64();
-        let clock = Instant::now();
-        chol.solve_in_place(rhs.as_mut());
-        scatter(&rhs, 0, first, &mut positions);
-        t.solve += clock.elapsed().as_secs_f64();
+        t.operators += seconds_since(clock);
+        timed(&mut t.solve, || {
+            let sol = system.solve(rhs);
+            scatter(&sol, 0, first, &mut positions);
+        });
         check_finite(&positions, "fit")?;
         guide_positions = positions.clone();
     }
-    factors.propagation = prop;
+    kept.propagation = prop;
     Ok(MethodResult { positions, propagated_normals: Some(n_star), guide_curvature: Some(h) })
 }

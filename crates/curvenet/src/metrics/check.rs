@@ -169,7 +169,8 @@ pub fn check_network_reader(data: &[u8], format: crate::io::NetworkFormat) -> Re
 /// alone; a vertex budget of 300–1000 keeps a run to milliseconds. `None` when `data` is
 /// too short.
 pub fn fuzz_case(data: &[u8]) -> Option<(Network, crate::Options)> {
-    use crate::pipeline::Patching;
+    use crate::methods::iterated::IterationOptions;
+    use crate::pipeline::{MeshOptions, Patching};
     use crate::{Curve, Method, Options};
     let (head, rest) = data.split_at_checked(8)?;
     let mut bytes = rest.iter().copied().cycle().take(rest.len().max(1) * 64);
@@ -240,10 +241,13 @@ pub fn fuzz_case(data: &[u8]) -> Option<(Network, crate::Options)> {
             3 => Method::ShortPaper,
             _ => Method::NormalControl,
         },
-        patching: if head[2] & 16 != 0 { Patching::Planar } else { Patching::Conformal },
-        iterations: ((head[2] >> 5) % 3) as usize,
+        mesh: MeshOptions {
+            patching: if head[2] & 16 != 0 { Patching::Planar } else { Patching::Conformal },
+            vertices: Some(300 + 100 * (head[3] % 8) as usize),
+            ..MeshOptions::default()
+        },
+        iterate: IterationOptions { iterations: ((head[2] >> 5) % 3) as usize, ..IterationOptions::default() },
         soft: (head[2] >> 7 == 1 && head[2] % 16 >= 3).then_some(2.0),
-        vertices: Some(300 + 100 * (head[3] % 8) as usize),
         ..Options::default()
     };
     Some((net, options))

@@ -142,9 +142,7 @@ impl Network {
     pub fn validated(&self) -> Result<(Network, Vec<Warning>)> {
         let mut warnings = Vec::new();
         if self.curves.is_empty() {
-            return Err(Error::input(
-                "the network has no curves: give at least one curve with points and normals",
-            ));
+            return Err(Error::input("the network has no curves: give at least one curve with points and normals"));
         }
         for (ci, c) in self.curves.iter().enumerate() {
             let label = || curve_label(&self.curves, ci);
@@ -154,7 +152,8 @@ impl Network {
                     label(),
                     c.points.len(),
                     c.normals.len()
-                )));
+                ))
+                .curve(ci));
             }
             let need = if c.closed { 3 } else { 2 };
             if c.points.len() < need {
@@ -163,7 +162,8 @@ impl Network {
                     label(),
                     c.points.len(),
                     if c.closed { " closed" } else { "n open" }
-                )));
+                ))
+                .curve(ci));
             }
             for (si, p) in c.points.iter().enumerate() {
                 if !p.is_finite() {
@@ -171,7 +171,9 @@ impl Network {
                         "{}, sample {si}: point {} has a non-finite coordinate",
                         label(),
                         fmt_point(*p)
-                    )));
+                    ))
+                    .curve(ci)
+                    .sample(si));
                 }
             }
             for (si, n) in c.normals.iter().enumerate() {
@@ -182,7 +184,9 @@ impl Network {
                          finite, non-zero normal pointing to the outside of the surface",
                         label(),
                         fmt_point(*n)
-                    )));
+                    ))
+                    .curve(ci)
+                    .sample(si));
                 }
             }
         }
@@ -222,6 +226,8 @@ impl Network {
             let mut points: Vec<DVec3> = Vec::with_capacity(c.points.len());
             let mut normals: Vec<DVec3> = Vec::with_capacity(c.points.len());
             let mut merged = Vec::new();
+            // The input sample of each kept point (for the ids of errors).
+            let mut input_sample: Vec<usize> = Vec::with_capacity(c.points.len());
             for (si, (p, n)) in c.points.iter().zip(&c.normals).enumerate() {
                 if let Some(last) = points.last() {
                     if last.distance(*p) <= dup_tol {
@@ -229,24 +235,32 @@ impl Network {
                         continue;
                     }
                 }
+                input_sample.push(si);
                 points.push(*p);
                 normals.push(n.normalize());
             }
             if !merged.is_empty() {
                 let list: Vec<String> = merged.iter().take(5).map(|s| s.to_string()).collect();
-                warnings.push(Warning::new(format!(
-                    "{label}: {} sample(s) repeated the previous one and were merged (sample {}{})",
-                    merged.len(),
-                    list.join(", "),
-                    if merged.len() > 5 { ", …" } else { "" }
-                )));
+                warnings.push(
+                    Warning::new(format!(
+                        "{label}: {} sample(s) repeated the previous one and were merged (sample {}{})",
+                        merged.len(),
+                        list.join(", "),
+                        if merged.len() > 5 { ", …" } else { "" }
+                    ))
+                    .curve(ci)
+                    .sample(merged[0]),
+                );
             }
             if c.closed && points.len() > 1 && points[0].distance(points[points.len() - 1]) <= dup_tol {
                 points.pop();
                 normals.pop();
-                warnings.push(Warning::new(format!(
-                    "{label}: closed curve repeats its first sample at the end; the repeat was dropped"
-                )));
+                warnings.push(
+                    Warning::new(format!(
+                        "{label}: closed curve repeats its first sample at the end; the repeat was dropped"
+                    ))
+                    .curve(ci),
+                );
             }
             let need = if c.closed { 3 } else { 2 };
             if points.len() < need {
@@ -254,15 +268,20 @@ impl Network {
                     "{label} has {} distinct sample(s); a{} curve needs at least {need}",
                     points.len(),
                     if c.closed { " closed" } else { "n open" }
-                )));
+                ))
+                .curve(ci));
             }
             if let Some(si) = tangent_normal(&points, &normals, c.closed) {
+                let sample = input_sample[si];
                 return Err(Error::input(format!(
-                    "{label}, sample {si}: normal {} is tangent to the curve (within {:.0}° of its direction); \
+                    "{label}, sample {sample}: normal {} is tangent to the curve (within {:.0}° of its direction); \
                      normals must be across the curve, pointing to the outside of the surface",
                     fmt_point(normals[si]),
                     Self::TANGENT_NORMAL_COSINE.acos().to_degrees()
-                )));
+                ))
+                .curve(ci)
+                .sample(sample)
+                .point(points[si]));
             }
             curves.push(Curve { name: c.name.clone(), points, normals, closed: c.closed, boundary: c.boundary });
         }

@@ -1,29 +1,31 @@
 //! A surfacing run that keeps its mesh and factorisations for fast re-solves with new curve
-//! normals: the editing loop of [CG] §5 (change the normals along a curve, see the surface
-//! follow).
+//! normals or positions: the editing loop of [CG] §5 (change the normals along a curve, see the
+//! surface follow).
 //!
 //! [`Surfacer::new`] runs the stages up to the tessellation once ([`crate::pipeline`]); each
-//! [`Surfacer::solve`] runs the final solve on that mesh. The normal-control matrices
-//! (propagation `(Ls M⁻¹ Ls)_ff`, fit) depend on the mesh and its planar operators only, not on
-//! the curve normals ([CG] eq. 1–3: the normals enter the right-hand sides), so after
-//! [`Surfacer::update_normals`] a solve costs right-hand sides and triangular solves. With
-//! [`crate::Options::iterations`] > 0 the 3D iterations still factorise their own systems
-//! (their operators follow the surface); [`crate::Options::fast`] (no iteration) is the
+//! [`Surfacer::solve`] runs the final solve on that mesh. Every method's matrices depend on
+//! the mesh and its domain operators only, not on the curve values ([CG] eq. 1–3: the normals
+//! and positions enter the right-hand sides; for `cauchy` the ghost vertices), so after
+//! [`Surfacer::update_normals`] or [`Surfacer::update_points`] a solve costs right-hand sides
+//! and triangular solves — for every method ([`crate::methods::SurfacingMethod`]). With
+//! `iterations` > 0 the 3D iterations refactorise their systems (their operators follow the
+//! surface), reusing the symbolic analysis; the `fast` preset (no iteration) is the
 //! interactive setting.
 //!
-//! The mesh is kept as built with the first normals: with planar patching the projection
-//! planes follow the cycles' mean normals, so a run from scratch with the new normals may
-//! triangulate slightly differently. A re-solve equals a fresh solve on the kept mesh.
+//! The mesh is kept as built with the first curves: with planar patching the projection planes
+//! follow the cycles' mean normals, so a run from scratch with the new values may triangulate
+//! slightly differently. A re-solve equals a fresh solve on the kept mesh.
 
+use super::prepare::{prepare, segment_layout, Prepared};
+use super::solve::{solve_prepared, Kept};
+use super::{Options, Surface, Timings};
 use crate::curves::CurveSpline;
-use crate::topology::resample::resample_network;
 use crate::error::{Error, Result};
-use crate::geom::DVec3;
 use crate::geom::mesh::Mesh;
-use crate::methods::normal_control::Factors;
+use crate::geom::DVec3;
 use crate::network::{curve_label, Network};
-use crate::pipeline::{prepare, solve_prepared, Options, Prepared, Surface, Timings};
 use crate::topology::find_nodes;
+use crate::topology::resample::{resample_network, resample_network_as, Resampled};
 use rayon::prelude::*;
 use std::borrow::Cow;
 
@@ -32,7 +34,7 @@ pub struct Surfacer {
     network: Network,
     options: Options,
     prepared: Prepared,
-    factors: Factors,
+    kept: Option<Kept>,
     solves: usize,
 }
 
@@ -41,13 +43,7 @@ impl Surfacer {
     /// [`crate::surface`] but the final solve). Errors as [`crate::surface`].
     pub fn new(network: &Network, options: &Options) -> Result<Self> {
         let prepared = prepare(network, options, &mut |_, _, _| {})?;
-        Ok(Surfacer {
-            network: network.clone(),
-            options: options.clone(),
-            prepared,
-            factors: Factors::default(),
-            solves: 0,
-        })
+        Ok(Surfacer { network: network.clone(), options: options.clone(), prepared, kept: None, solves: 0 })
     }
 
     /// The network with the current normals.
@@ -68,11 +64,11 @@ impl Surfacer {
 
     /// Whether a factorisation from an earlier solve is kept.
     pub fn is_factored(&self) -> bool {
-        !self.factors.is_empty()
+        self.kept.as_ref().is_some_and(Kept::is_factored)
     }
 
-    /// Surfaces the network with the current normals. The first call factorises; later ones
-    /// reuse the normal-control factorisations. The statistics' timings of the first solve
+    /// Surfaces the network with the current curve values. The first call factorises; later
+    /// ones reuse the method's factorisations. The statistics' timings of the first solve
     /// include the preparation; later ones only the solve.
     pub fn solve(&mut self) -> Result<Surface> {
         let base = if self.solves == 0 { self.prepared.timings } else { Timings::default() };
@@ -80,7 +76,7 @@ impl Surfacer {
             Cow::Borrowed(&self.prepared),
             &self.options,
             &mut |_, _, _| {},
-            Some(&mut self.factors),
+            Some(&mut self.kept),
             base,
         )?;
         if self.solves == 0 {
@@ -95,46 +91,102 @@ impl Surfacer {
     /// sample of the curve; they need not be unit length. The next [`Surfacer::solve`] uses
     /// them with the kept mesh and factorisations.
     ///
-    /// Errors: [`Error::usage`] for a curve index out of range; [`Error::Input`] for a wrong
+    /// Errors: [`Error::Usage`] for a curve index out of range; [`Error::Input`] for a wrong
     /// number of normals or an invalid normal (curve and sample named), as [`crate::surface`];
     /// [`Error::Topology`] when the new normals change the network's nodes (they are averaged
     /// there: normals that cancel). The surfacer is unchanged on error.
     pub fn update_normals(&mut self, curve: usize, normals: &[DVec3]) -> Result<()> {
-        let count = self.network.curves.len();
-        let Some(c) = self.network.curves.get(curve) else {
-            return Err(Error::usage(format!("curve {curve} does not exist: the network has {count} curves")));
-        };
-        if normals.len() != c.points.len() {
-            return Err(Error::input(format!(
-                "{}: {} normals given for {} samples; give one normal per sample",
-                curve_label(&self.network.curves, curve),
-                normals.len(),
-                c.points.len()
-            )));
-        }
-        let mut network = self.network.clone();
-        network.curves[curve].normals = normals.to_vec();
+        let network = self.changed(curve, normals, "normals", |c, n| c.normals = n)?;
         // The curve normals of the mesh: the stages that produce them, with the kept snapping
         // tolerance and spacing (the positions come out as before: they do not depend on the
         // normals).
-        let (net, _) = network.validated()?;
-        let (g, _) = find_nodes(&net, self.prepared.snap)?;
-        let splines: Vec<CurveSpline> =
-            g.curves.par_iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
-        let res = resample_network(&g, &splines, self.prepared.spacing);
+        let res = self.resampled(&network, curve, "normals")?;
         let mesh = &self.prepared.mesh;
-        let scale = net.bounding_box().diagonal();
-        let same = res.positions.len() == mesh.num_curve
-            && res.positions.iter().zip(&mesh.positions).all(|(a, b)| a.distance(*b) <= 1e-12 * scale);
-        if !same {
-            return Err(Error::topology(format!(
-                "the new normals of {} change the network's nodes or curve vertices; build a new surfacer",
-                curve_label(&self.network.curves, curve)
-            )));
+        let scale = network.bounding_box().diagonal();
+        if !res.positions.iter().zip(&mesh.positions).all(|(a, b)| a.distance(*b) <= 1e-12 * scale) {
+            return Err(self.topology_changed(curve, "normals"));
         }
         self.prepared.mesh.curve_normals = res.normals;
         self.network = network;
         Ok(())
+    }
+
+    /// Moves the samples of curve `curve` to `points`, one per sample (the normals stay). The
+    /// curves must keep their nodes and segments (the same curves meet, in the same order) and
+    /// the mesh its curve vertices: the next [`Surfacer::solve`] uses the new curve vertices
+    /// with the kept mesh connectivity and factorisations (every method's matrices depend on
+    /// the patches' domains, not on the curve positions). The free vertices' domain stays the
+    /// one of the first curves: for large moves build a new surfacer.
+    ///
+    /// Errors as [`Surfacer::update_normals`]; [`Error::Topology`] when the move changes the
+    /// nodes, the segments or their vertex counts.
+    pub fn update_points(&mut self, curve: usize, points: &[DVec3]) -> Result<()> {
+        let network = self.changed(curve, points, "points", |c, p| c.points = p)?;
+        let res = self.resampled(&network, curve, "points")?;
+        let (net, _) = network.validated()?;
+        self.prepared.mesh.positions[..res.positions.len()].copy_from_slice(&res.positions);
+        self.prepared.mesh.curve_normals = res.normals;
+        self.prepared.curves = net.curves.iter().map(|c| (c.points.clone(), c.closed)).collect();
+        if let Some(k) = self.kept.as_mut() {
+            k.set_curves(&self.prepared.curves);
+        }
+        self.network = network;
+        Ok(())
+    }
+
+    /// The network with `values` (one per sample of curve `curve`) set by `put`; `what` names
+    /// them in errors.
+    fn changed(
+        &self,
+        curve: usize,
+        values: &[DVec3],
+        what: &str,
+        put: impl FnOnce(&mut crate::Curve, Vec<DVec3>),
+    ) -> Result<Network> {
+        let count = self.network.curves.len();
+        let Some(c) = self.network.curves.get(curve) else {
+            return Err(Error::usage(format!("curve {curve} does not exist: the network has {count} curves")));
+        };
+        if values.len() != c.points.len() {
+            return Err(Error::input(format!(
+                "{}: {} {what} given for {} samples; give one per sample",
+                curve_label(&self.network.curves, curve),
+                values.len(),
+                c.points.len()
+            ))
+            .curve(curve));
+        }
+        let mut network = self.network.clone();
+        put(&mut network.curves[curve], values.to_vec());
+        Ok(network)
+    }
+
+    /// The curve vertices of `network` (the stages that produce them, with the kept snapping
+    /// tolerance and spacing), checked to have the kept mesh's segments and vertex counts.
+    fn resampled(&self, network: &Network, curve: usize, what: &str) -> Result<Resampled> {
+        let (net, _) = network.validated()?;
+        let (g, _) = find_nodes(&net, self.prepared.snap)?;
+        let splines: Vec<CurveSpline> =
+            g.curves.par_iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
+        // The kept mesh's vertex count per segment (pieces = vertices − 1), on the moved curves.
+        let pieces: Vec<usize> = self.prepared.layout.iter().map(|l| l[3].saturating_sub(1)).collect();
+        let res = if g.segments.len() == pieces.len() {
+            resample_network_as(&g, &splines, &pieces)
+        } else {
+            resample_network(&g, &splines, self.prepared.spacing)
+        };
+        if res.positions.len() != self.prepared.mesh.num_curve || segment_layout(&g, &res) != self.prepared.layout {
+            return Err(self.topology_changed(curve, what));
+        }
+        Ok(res)
+    }
+
+    fn topology_changed(&self, curve: usize, what: &str) -> Error {
+        Error::topology(format!(
+            "the new {what} of {} change the network's nodes or curve vertices; build a new surfacer",
+            curve_label(&self.network.curves, curve)
+        ))
+        .curve(curve)
     }
 }
 

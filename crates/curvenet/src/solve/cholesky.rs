@@ -2,8 +2,8 @@
 //! ordering) of the SPD system on the unknown vertices, reused for every right-hand side
 //! (DESIGN §1, last convention). Hard constraints are eliminated before the factorisation.
 
-use crate::error::{Error, Result};
 use super::tree_solve;
+use crate::error::{Error, Result};
 use crate::solve::sparse::Csc;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;

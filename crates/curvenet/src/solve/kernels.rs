@@ -90,8 +90,7 @@ pub(super) fn forward_generic<const AVX2: bool>(block: &[f64], w: usize, h: usiz
             // Every row below: z_i -= Σ_q L_iq z_q.
             if jb == 4 {
                 let a = [-zc[j0], -zc[j0 + 1], -zc[j0 + 2], -zc[j0 + 3]];
-                let b =
-                    [column(j0, j0 + 4), column(j0 + 1, j0 + 4), column(j0 + 2, j0 + 4), column(j0 + 3, j0 + 4)];
+                let b = [column(j0, j0 + 4), column(j0 + 1, j0 + 4), column(j0 + 2, j0 + 4), column(j0 + 3, j0 + 4)];
                 axpy4::<AVX2>(&mut zc[j0 + 4..], b, a);
             } else {
                 for j in j0..j0 + jb {
@@ -118,8 +117,7 @@ pub(super) fn backward_generic<const AVX2: bool>(block: &[f64], w: usize, h: usi
             // Every row below: z_q -= Σ_i L_iq z_i.
             let (head, below) = zc.split_at_mut(j0 + jb);
             if jb == 4 {
-                let b =
-                    [column(j0, j0 + 4), column(j0 + 1, j0 + 4), column(j0 + 2, j0 + 4), column(j0 + 3, j0 + 4)];
+                let b = [column(j0, j0 + 4), column(j0 + 1, j0 + 4), column(j0 + 2, j0 + 4), column(j0 + 3, j0 + 4)];
                 let d = dot4::<AVX2>(b, below);
                 for q in 0..4 {
                     head[j0 + q] -= d[q];

@@ -132,11 +132,7 @@ enum Sink<'a> {
 
 /// The supernode's block of `L`: its first row, its pattern (the rows below its columns)
 /// and its values, column-major with leading dimension `w + pattern.len()`.
-fn block<'a>(
-    sym: &'a SymbolicSupernodalCholesky<u32>,
-    values: &'a [f64],
-    s: usize,
-) -> (usize, &'a [u32], &'a [f64]) {
+fn block<'a>(sym: &'a SymbolicSupernodalCholesky<u32>, values: &'a [f64], s: usize) -> (usize, &'a [u32], &'a [f64]) {
     let node = sym.supernode(s);
     let vals = &values[sym.col_ptr_for_val()[s] as usize..sym.col_ptr_for_val()[s + 1] as usize];
     (node.start(), node.pattern(), vals)
@@ -245,13 +241,7 @@ unsafe fn put_back(z: &[f64], x: Shared, start: usize, w: usize, h: usize) {
 }
 
 /// Solves `L Lᵀ x = b` in place (`x`: the permuted right-hand sides, row-major `n × k`).
-pub(super) fn solve(
-    sym: &SymbolicSupernodalCholesky<u32>,
-    values: &[f64],
-    split: &TreeSplit,
-    x: &mut [f64],
-    k: usize,
-) {
+pub(super) fn solve(sym: &SymbolicSupernodalCholesky<u32>, values: &[f64], split: &TreeSplit, x: &mut [f64], k: usize) {
     let shared = Shared { ptr: x.as_mut_ptr(), k };
     let rows = split.top_rows;
     let mut buf = vec![0.0; rows * k];

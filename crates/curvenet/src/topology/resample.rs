@@ -20,6 +20,22 @@ pub struct Resampled {
 /// Resamples every segment of `g` at spacing ≈ `d`: a segment of arc length `ℓ` gets
 /// `max(1, round(ℓ/d))` pieces of equal arc length, so nodes stay exact.
 pub fn resample_network(g: &Graph, splines: &[CurveSpline], d: f64) -> Resampled {
+    resample_with(g, splines, &|_, len, min| ((len / d).round() as usize).max(min))
+}
+
+/// Resamples segment `s` of `g` into `pieces[s]` pieces of equal arc length (the counts of an
+/// earlier resampling: the same mesh vertices on moved curves).
+pub fn resample_network_as(g: &Graph, splines: &[CurveSpline], pieces: &[usize]) -> Resampled {
+    resample_with(g, splines, &|s, _, min| pieces.get(s).copied().unwrap_or(min).max(min))
+}
+
+/// Resamples segment `s` of arc length `ℓ` into `pieces(s, ℓ, min)` pieces, `min` the fewest a
+/// cycle allows (a loop on one node ≥ 3, two segments between the same nodes ≥ 2 each).
+fn resample_with(
+    g: &Graph,
+    splines: &[CurveSpline],
+    pieces: &(dyn Fn(usize, f64, usize) -> usize + Sync),
+) -> Resampled {
     use rayon::prelude::*;
     let mut r = Resampled {
         positions: g.nodes.iter().map(|n| n.position).collect(),
@@ -36,7 +52,8 @@ pub fn resample_network(g: &Graph, splines: &[CurveSpline], d: f64) -> Resampled
     let samples: Vec<Vec<(DVec3, DVec3)>> = g
         .segments
         .par_iter()
-        .map(|seg| {
+        .enumerate()
+        .map(|(si, seg)| {
             let sp = &splines[seg.curve];
             let len = sp.arc_between(seg.first, seg.last);
             let min = if seg.start == seg.end {
@@ -46,8 +63,7 @@ pub fn resample_network(g: &Graph, splines: &[CurveSpline], d: f64) -> Resampled
             } else {
                 1
             };
-            let pieces = ((len / d).round() as usize).max(min);
-            sp.resample(seg.first, seg.last, pieces)
+            sp.resample(seg.first, seg.last, pieces(si, len, min))
         })
         .collect();
     for (seg, s) in g.segments.iter().zip(samples) {
@@ -68,5 +84,3 @@ pub fn resample_network(g: &Graph, splines: &[CurveSpline], d: f64) -> Resampled
     }
     r
 }
-
-

@@ -17,12 +17,13 @@
 
 use super::params::CauchyParams;
 use super::system::{MicroWeight, Role, Stencil, System};
-use crate::solve::timing::Instant;
 use crate::error::{Error, Result};
-use crate::geom::DVec3;
 use crate::geom::mesh::Mesh;
-use crate::methods::{MethodResult, SolveTimings};
+use crate::geom::DVec3;
+use crate::methods::{MethodResult, SurfacingMethod};
 use crate::operators::Operators;
+use crate::solve::timing::{seconds_since, timed, Instant};
+use crate::solve::SolveTimings;
 use serde_json::Value;
 
 /// How a curve acts on the surface ([A11] §5).
@@ -340,41 +341,94 @@ pub fn domain_edges(
 }
 
 /// `--method cauchy --order K` on a tessellated network: the order-k system with the curve
-/// constraints of [`curve_constraints`], cotangent weights of the patches' planar domains.
-pub fn solve_network(
-    mesh: &Mesh,
-    ops: &Operators,
-    curves: &[(Vec<DVec3>, bool)],
-    attrs: Option<&NetworkAttributes>,
-    snap: f64,
-    order: usize,
-    ghost_updates: usize,
-    t: &mut SolveTimings,
-) -> Result<MethodResult> {
-    let clock = Instant::now();
-    let (roles, params) = curve_constraints(mesh, curves, attrs, snap)?;
-    if !roles.iter().any(|r| *r != Role::Free) {
-        return Err(Error::input("every curve is inactive: the Cauchy system has no constraint"));
+/// constraints of [`curve_constraints`], cotangent weights of the patches' planar domains, as a
+/// [`SurfacingMethod`]. The system and its LU factorisation depend on the vertex roles and the
+/// domain, not on the curve normals (they enter the ghost positions, the right-hand side): a
+/// solve with new normals reuses them; new curve positions that change the roles or the
+/// domain's edge lengths build a new system.
+pub struct Andrews2011 {
+    /// The network's curves (points, closed): where the curve vertices lie on them.
+    pub curves: Vec<(Vec<DVec3>, bool)>,
+    /// The user's settings, with the per-curve attributes.
+    pub options: super::CauchyOptions,
+    /// Which curves meet at a vertex (the run's snapping tolerance).
+    pub snap: f64,
+    /// Roles, domain edge lengths, system and factorisation of the last solve.
+    kept: Option<Kept>,
+}
+
+struct Kept {
+    roles: Vec<Role>,
+    edge_lengths: Vec<((u32, u32), f64)>,
+    system: System,
+    factored: super::system::Factored,
+}
+
+impl Andrews2011 {
+    /// The method for the network's `curves`, nothing factorised yet.
+    pub fn new(curves: Vec<(Vec<DVec3>, bool)>, options: super::CauchyOptions, snap: f64) -> Self {
+        Andrews2011 { curves, options, snap, kept: None }
     }
-    let mut stencil = Stencil::from_operators(ops, mesh.positions.clone());
-    let edges = domain_edges(mesh, &roles, &params);
-    stencil.edge_lengths = edges.iter().map(|(&k, &(_, len))| (k, len)).collect();
-    let system = System::build(&stencil, &roles, order, MicroWeight::Consistent)?;
-    // Ghost offsets O Rᵢ (1 + s/|e|) e per ghost line ([A11] eq. 3).
-    let offsets: Vec<DVec3> = system
-        .ghosts
-        .iter()
-        .map(|g| match (params[g.vertex as usize], edges.get(&(g.vertex, g.source))) {
-            (Some(p), Some(&(e, _))) => p.ghost_offset(e),
-            _ => mesh.positions[g.vertex as usize] - mesh.positions[g.source as usize],
-        })
-        .collect();
-    t.operators += clock.elapsed().as_secs_f64();
-    let clock = Instant::now();
-    let f = system.factor()?;
-    t.factor += clock.elapsed().as_secs_f64();
-    let clock = Instant::now();
-    let positions = system.solve_with_updates(&f, &mesh.positions, &offsets, ghost_updates)?;
-    t.solve += clock.elapsed().as_secs_f64();
-    Ok(MethodResult { positions, ..Default::default() })
+}
+
+impl SurfacingMethod for Andrews2011 {
+    fn name(&self) -> &'static str {
+        crate::methods::Method::Cauchy.name()
+    }
+
+    fn solve(&mut self, mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<MethodResult> {
+        let clock = Instant::now();
+        let attrs = self.options.attributes.as_deref();
+        let (roles, params) = curve_constraints(mesh, &self.curves, attrs, self.snap)?;
+        if !roles.iter().any(|r| *r != Role::Free) {
+            return Err(Error::input("every curve is inactive: the Cauchy system has no constraint"));
+        }
+        let edges = domain_edges(mesh, &roles, &params);
+        let mut edge_lengths: Vec<((u32, u32), f64)> = edges.iter().map(|(&k, &(_, len))| (k, len)).collect();
+        edge_lengths.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        let reuse = self.kept.take().filter(|k| k.roles == roles && k.edge_lengths == edge_lengths);
+        let kept = match reuse {
+            Some(k) => {
+                t.operators += seconds_since(clock);
+                k
+            }
+            None => {
+                let mut stencil = Stencil::from_operators(ops, mesh.positions.clone());
+                stencil.edge_lengths = edge_lengths.iter().copied().collect();
+                let system = System::build(&stencil, &roles, self.options.order, MicroWeight::Consistent)?;
+                t.operators += seconds_since(clock);
+                let factored = timed(&mut t.factor, || system.factor())?;
+                Kept { roles, edge_lengths, system, factored }
+            }
+        };
+        let clock = Instant::now();
+        // Ghost offsets O Rᵢ (1 + s) e per ghost line ([A11] eq. 3).
+        let offsets: Vec<DVec3> = kept
+            .system
+            .ghosts
+            .iter()
+            .map(|g| match (params[g.vertex as usize], edges.get(&(g.vertex, g.source))) {
+                (Some(p), Some(&(e, _))) => p.ghost_offset(e),
+                _ => mesh.positions[g.vertex as usize] - mesh.positions[g.source as usize],
+            })
+            .collect();
+        t.operators += seconds_since(clock);
+        let updates = self.options.ghost_updates;
+        let positions =
+            timed(&mut t.solve, || kept.system.solve_with_updates(&kept.factored, &mesh.positions, &offsets, updates));
+        self.kept = Some(kept);
+        Ok(MethodResult { positions: positions?, ..Default::default() })
+    }
+
+    fn is_factored(&self) -> bool {
+        self.kept.is_some()
+    }
+
+    fn release(&mut self) {
+        self.kept = None;
+    }
+
+    fn set_curves(&mut self, curves: &[(Vec<DVec3>, bool)]) {
+        self.curves = curves.to_vec();
+    }
 }

@@ -23,7 +23,38 @@ pub mod params;
 pub mod reduce;
 pub mod system;
 
+pub use constraints::Andrews2011;
 pub use constraints::{CurveAttributes, Kind, NetworkAttributes};
 pub use params::{ghost_positions, CauchyParams};
 pub use reduce::GhostBasis;
 pub use system::{MicroWeight, Role, Stencil, System};
+
+/// The user's settings of `method = cauchy` (options `order`, `ghost_updates`; docs/design.md
+/// §6) and the per-curve attributes read from the network JSON.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CauchyOptions {
+    /// `order`: the Laplacian order `k` of [A11] eq. 1, 1–3. Default
+    /// [`CauchyOptions::DEFAULT_ORDER`].
+    pub order: usize,
+    /// `ghost_updates`: re-solves with centred ghost vertices (see
+    /// [`System::solve_with_updates`]; 0: the paper's ghosts). Default
+    /// [`CauchyOptions::DEFAULT_GHOST_UPDATES`].
+    pub ghost_updates: usize,
+    /// Per-curve `kind`, `sharpness`, `stretch` (read from the network JSON by
+    /// [`NetworkAttributes::read`]); `None`: every curve a flat Cauchy constraint oriented by
+    /// its normals.
+    pub attributes: Option<std::sync::Arc<NetworkAttributes>>,
+}
+
+impl CauchyOptions {
+    /// Default `order`: the biharmonic, as in most of [A11]'s figures.
+    pub const DEFAULT_ORDER: usize = 2;
+    /// Default `ghost_updates`.
+    pub const DEFAULT_GHOST_UPDATES: usize = 10;
+}
+
+impl Default for CauchyOptions {
+    fn default() -> Self {
+        CauchyOptions { order: Self::DEFAULT_ORDER, ghost_updates: Self::DEFAULT_GHOST_UPDATES, attributes: None }
+    }
+}

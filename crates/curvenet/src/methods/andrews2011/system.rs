@@ -25,8 +25,8 @@
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::operators::Operators;
-use faer::linalg::solvers::Solve;
-use faer::sparse::{SparseColMat, Triplet};
+use crate::solve::lu::{Lu, LuError};
+use crate::solve::Factorization;
 use faer::Mat;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -315,20 +315,16 @@ impl System {
         b
     }
 
-    /// Factors `A` (sparse LU with partial pivoting; see the module docs).
+    /// Factors `A` (sparse LU with partial pivoting, [`crate::solve::Lu`]; see the module docs).
     pub fn factor(&self) -> Result<Factored> {
-        let n = self.num_free();
-        let trip: Vec<Triplet<usize, usize, f64>> =
-            self.a.iter().map(|&(r, c, x)| Triplet::new(r as usize, c as usize, x)).collect();
-        let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trip)
-            .map_err(|e| Error::numerical(format!("Cauchy system assembly: {e:?}")))?;
-        let lu = a.sp_lu().map_err(|e| {
-            Error::numerical(format!(
-                "the order-{} Cauchy system is singular ({e:?}): is every patch constrained?",
+        let lu = Lu::factor(self.num_free(), &self.a).map_err(|e| match e {
+            LuError::Assembly(e) => Error::numerical(format!("Cauchy system assembly: {e}")),
+            LuError::Singular(e) => Error::numerical(format!(
+                "the order-{} Cauchy system is singular ({e}): is every patch constrained?",
                 self.order
-            ))
+            )),
         })?;
-        Ok(Factored { lu, n })
+        Ok(Factored { lu })
     }
 
     /// Factors and solves once; returns all vertex positions (constraints keep `positions`).
@@ -395,15 +391,16 @@ pub(crate) fn check_finite(p: &[DVec3]) -> Result<()> {
 
 /// A factored system: solve many right-hand sides.
 pub struct Factored {
-    lu: faer::sparse::linalg::solvers::Lu<usize, f64>,
-    n: usize,
+    lu: Lu,
 }
 
 impl Factored {
+    /// Number of unknowns.
     pub fn dim(&self) -> usize {
-        self.n
+        self.lu.dim()
     }
 
+    /// Solves `A X = B` in place for every column of `b`.
     pub fn solve_in_place(&self, b: &mut Mat<f64>) {
         self.lu.solve_in_place(b.as_mut());
     }

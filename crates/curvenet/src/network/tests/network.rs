@@ -28,16 +28,19 @@ fn errors_name_curve_and_sample() {
     c.normals[2] = DVec3::ZERO;
     let e = Network { curves: vec![line(2), c], snap: None }.validated().unwrap_err();
     assert!(e.to_string().contains("curve 1, sample 2"), "{e}");
+    assert_eq!((e.at().curve, e.at().sample), (Some(1), Some(2)));
 
     let mut c = line(3);
     c.points[1].y = f64::NAN;
     let e = Network { curves: vec![c], snap: None }.validated().unwrap_err();
     assert!(e.to_string().contains("sample 1") && e.to_string().contains("non-finite"), "{e}");
+    assert_eq!((e.at().curve, e.at().sample), (Some(0), Some(1)));
 
     let mut c = line(3);
     c.normals.pop();
     let e = Network { curves: vec![c], snap: None }.validated().unwrap_err();
     assert!(e.to_string().contains("3 points but 2 normals"), "{e}");
+    assert_eq!((e.at().curve, e.at().sample), (Some(0), None));
 
     let e = Network { curves: vec![line(1)], snap: None }.validated().unwrap_err();
     assert!(e.to_string().contains("at least 2"), "{e}");

@@ -1,6 +1,7 @@
 use super::*;
+use crate::methods::Method;
 use crate::network::examples::example;
-use crate::pipeline::{solve_prepared, surface};
+use crate::pipeline::surface;
 
 fn max_distance(a: &[DVec3], b: &[DVec3]) -> f64 {
     assert_eq!(a.len(), b.len());
@@ -42,29 +43,88 @@ fn check(name: &str, options: &Options, curve: usize) {
 
 #[test]
 fn resolve_equals_fresh_solve_closed() {
-    check("sphere", &Options { vertices: Some(3000), ..Options::fast() }, 0);
+    check("sphere", &Options::fast().with_vertices(3000), 0);
 }
 
 #[test]
 fn resolve_equals_fresh_solve_open_border() {
     // Open border: the fit has its own factorisation, kept too.
-    check("saddle", &Options { vertices: Some(3000), ..Options::fast() }, 1);
+    check("saddle", &Options::fast().with_vertices(3000), 1);
 }
 
 #[test]
 fn resolve_equals_fresh_solve_with_iterations() {
-    check("sphere", &Options { vertices: Some(3000), ..Options::default() }, 0);
+    check("sphere", &Options::default().with_vertices(3000), 0);
+}
+
+/// Every method keeps its factorisation: the first solve equals the one-shot pipeline, and
+/// after the rim of the saddle moves (keeping its nodes) a re-solve equals a fresh solve on the
+/// same mesh and differs from the first surface.
+#[test]
+fn every_method_resolves_after_moved_points() {
+    let network = example("saddle").unwrap();
+    // The rim moves up by 0.2 sin²(2θ): zero where the axes meet it.
+    let moved: Vec<DVec3> = network.curves[0]
+        .points
+        .iter()
+        .map(|p| {
+            let s = (2.0 * p.y.atan2(p.x)).sin();
+            *p + DVec3::new(0.0, 0.0, 0.2 * s * s)
+        })
+        .collect();
+    for method in Method::ALL {
+        let options = Options::fast().with_vertices(2000).with_method(method);
+        let name = method.name();
+        let one_shot = surface(&network, &options).unwrap();
+        let mut s = Surfacer::new(&network, &options).unwrap();
+        let first = s.solve().unwrap();
+        assert!(s.is_factored(), "{name}");
+        assert!(max_distance(&first.mesh.positions, &one_shot.mesh.positions) <= 1e-12, "{name}");
+        s.update_points(0, &moved).unwrap();
+        let again = s.solve().unwrap();
+        let fresh = solve_prepared(
+            std::borrow::Cow::Borrowed(&s.prepared),
+            &options,
+            &mut |_, _, _| {},
+            None,
+            Timings::default(),
+        )
+        .unwrap();
+        let d = max_distance(&again.mesh.positions, &fresh.mesh.positions);
+        assert!(d <= 1e-10, "{name}: re-solve differs from a fresh solve by {d:e}");
+        let shift = max_distance(&again.mesh.positions, &first.mesh.positions);
+        assert!(shift > 0.05, "{name}: the moved rim moved the surface by only {shift:e}");
+        // The curve vertices follow the moved rim: up to 0.2 above the saddle.
+        let lift = again.mesh.positions[..again.mesh.num_curve]
+            .iter()
+            .map(|p| p.z - 0.5 * (p.x * p.x - p.y * p.y))
+            .fold(f64::MIN, f64::max);
+        assert!((lift - 0.2).abs() < 0.01, "{name}: rim lifted by {lift}");
+    }
+}
+
+#[test]
+fn moving_a_crossing_is_a_topology_error() {
+    let network = example("saddle").unwrap();
+    let mut s = Surfacer::new(&network, &Options::fast().with_vertices(2000)).unwrap();
+    // The x axis lifted by 0.3 everywhere: it no longer meets the rim or the y axis.
+    let lifted: Vec<DVec3> = network.curves[1].points.iter().map(|p| *p + DVec3::new(0.0, 0.0, 0.3)).collect();
+    let e = s.update_points(1, &lifted).unwrap_err();
+    assert!(matches!(e, crate::Error::Topology { .. }) && e.at().curve == Some(1), "{e}");
+    assert_eq!(s.network().curves[1].points, network.curves[1].points);
 }
 
 #[test]
 fn update_normals_errors() {
     let network = example("sphere").unwrap();
-    let mut s = Surfacer::new(&network, &Options { vertices: Some(2000), ..Options::fast() }).unwrap();
+    let mut s = Surfacer::new(&network, &Options::fast().with_vertices(2000)).unwrap();
     let count = network.curves.len();
     let e = s.update_normals(count, &[]).unwrap_err().to_string();
     assert!(e.contains(&format!("curve {count} does not exist")), "{e}");
     let n = network.curves[0].normals.len();
-    let e = s.update_normals(0, &network.curves[0].normals[1..]).unwrap_err().to_string();
+    let e = s.update_normals(0, &network.curves[0].normals[1..]).unwrap_err();
+    assert_eq!(e.at().curve, Some(0));
+    let e = e.to_string();
     assert!(e.contains(&format!("{} normals given for {n} samples", n - 1)), "{e}");
     let mut bad = network.curves[0].normals.clone();
     bad[3] = DVec3::ZERO;

@@ -56,7 +56,7 @@ fn a_lower_triangle_gives_the_same_order() {
 fn sphere_system() -> (Csc, Vec<u32>) {
     use crate::operators::{cotan_operators, Metric};
     let net = crate::network::examples::example("sphere").unwrap();
-    let s = crate::surface(&net, &crate::Options { vertices: Some(20_000), ..crate::Options::fast() }).unwrap();
+    let s = crate::surface(&net, &crate::Options::fast().with_vertices(20_000)).unwrap();
     let mesh = &s.mesh;
     let ops = cotan_operators(mesh, Metric::Planar, &mesh.positions);
     let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();

@@ -1,0 +1,343 @@
+//! The stages before the final solve ([CG] §3.1–3.3; docs/design.md §1, steps 1–6): validate
+//! the options and the network, find the nodes and segments, fit the splines, trace the
+//! cycles, choose the spacing, resample and tessellate — with planar projections, or with a
+//! coarse first solve whose conformal flattening the patches are triangulated in.
+
+use super::options::{MeshOptions, Options, Patching};
+use super::stats::Timings;
+use crate::curves::CurveSpline;
+use crate::error::{Error, Result, Warning};
+use crate::geom::mesh::Mesh;
+use crate::geom::DVec3;
+use crate::methods::normal_control::{normal_control, NormalControlOptions, NormalControlParams};
+use crate::methods::Method;
+use crate::network::Network;
+use crate::operators::{cotan_operators, Metric};
+use crate::solve::timing::{seconds_since, timed, Instant};
+use crate::solve::SolveTimings;
+use crate::tessellate::{flatten_patches, tessellate, tessellate_conformal, VERTICES_PER_AREA};
+use crate::topology::cycles::{find_patches_open, half_edge_samples};
+use crate::topology::resample::{resample_network, Resampled};
+use crate::topology::{find_nodes, trim_dangling, Graph, Patch};
+use rayon::prelude::*;
+
+/// A stage's progress report: `(stage, seconds, detail)`.
+pub type Progress<'a> = &'a mut dyn FnMut(&str, f64, &str);
+
+/// What the stages before the final solve produced: the mesh and the figures the solve and
+/// its statistics need. [`crate::Surfacer`] keeps it between solves.
+#[derive(Clone, Debug)]
+pub(crate) struct Prepared {
+    /// The mesh the final solve runs on (curve vertices first, with their input normals).
+    pub mesh: Mesh,
+    /// The target edge length `d`.
+    pub spacing: f64,
+    /// The snapping tolerance the nodes were found with.
+    pub snap: f64,
+    /// The validated input curves' samples and closedness (`method = cauchy` finds its
+    /// constraint curves on the mesh by them).
+    pub curves: Vec<(Vec<DVec3>, bool)>,
+    /// Mean input sample spacing (soft constraints are scaled by it).
+    pub input_spacing: f64,
+    /// Number of patches.
+    pub patches: usize,
+    /// Number of nodes.
+    pub nodes: usize,
+    /// Number of segments.
+    pub segments: usize,
+    /// Number of connected components of the network.
+    pub components: usize,
+    /// Per segment: its curve, start and end nodes and number of mesh vertices (a re-solve
+    /// with moved curves needs the same).
+    pub layout: Vec<[usize; 4]>,
+    /// What the stages repaired or assumed.
+    pub warnings: Vec<Warning>,
+    /// Seconds of the stages so far (`total`: their sum).
+    pub timings: Timings,
+    /// Seconds of the conformal first solve.
+    pub solve_timings: SolveTimings,
+}
+
+/// The network's topology: the validated network, its nodes, segments, splines and patches.
+struct Topology {
+    net: Network,
+    g: Graph,
+    splines: Vec<CurveSpline>,
+    patches: Vec<Patch>,
+    snap: f64,
+    warnings: Vec<Warning>,
+}
+
+/// Validates, finds the nodes and patches, picks the spacing, resamples and tessellates
+/// (with the conformal first solve when `options.mesh.patching` asks for it).
+pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'_>) -> Result<Prepared> {
+    let start = Instant::now();
+    let mut timings = Timings::default();
+    check_options(options)?;
+    let mut topo = topology(network, &options.mesh, &mut timings, progress)?;
+
+    // Spacing.
+    let clock = Instant::now();
+    let size = SizeModel::new(&topo.g, &topo.splines, &topo.patches);
+    let target = options.mesh.vertices.unwrap_or(MeshOptions::DEFAULT_VERTICES);
+    let d = options.mesh.spacing.unwrap_or_else(|| size.spacing(target));
+    let estimate = size.vertices(d);
+    if estimate > MeshOptions::MAX_VERTICES {
+        return Err(Error::usage(format!(
+            "spacing {d:.3e} would create about {estimate:.2e} vertices (limit {:.0e}); give a larger `spacing` or a smaller `vertices`",
+            MeshOptions::MAX_VERTICES
+        )));
+    }
+    timings.resample += seconds_since(clock);
+
+    let mut st = SolveTimings::default();
+    let (mesh, d, layout) = match options.mesh.patching {
+        Patching::Planar => {
+            let (res, mesh) = planar_stage(&topo, d, &mut timings)?;
+            let layout = segment_layout(&topo.g, &res);
+            topo.warnings.extend(fold_warnings(&mesh));
+            progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
+            let detail = format!("{} vertices, {} faces", mesh.num_vertices(), mesh.faces.len());
+            progress("tessellate", timings.tessellate, &detail);
+            (mesh, d, layout)
+        }
+        Patching::Conformal => {
+            let spacing = options.mesh.spacing.is_none().then_some((&size, target));
+            conformal_stage(&mut topo, d, spacing, &mut timings, &mut st, progress)?
+        }
+    };
+    timings.total = seconds_since(start);
+    let c = topo.g.node_components();
+    Ok(Prepared {
+        mesh,
+        spacing: d,
+        snap: topo.snap,
+        curves: topo.net.curves.iter().map(|c| (c.points.clone(), c.closed)).collect(),
+        input_spacing: topo.net.mean_sample_spacing(),
+        patches: topo.patches.len(),
+        nodes: topo.g.nodes.len(),
+        segments: topo.g.segments.len(),
+        components: (0..c.len()).filter(|&i| c[i] == i).count(),
+        layout,
+        warnings: topo.warnings,
+        timings,
+        solve_timings: st,
+    })
+}
+
+/// Per segment of `g`: its curve, start and end nodes and number of vertices in `res`.
+pub(crate) fn segment_layout(g: &Graph, res: &Resampled) -> Vec<[usize; 4]> {
+    g.segments.iter().zip(&res.segment_vertices).map(|(s, v)| [s.curve, s.start, s.end, v.len()]).collect()
+}
+
+/// Checks the values of the options a library caller may have set directly (front ends check
+/// them when they are set by name, [`Options::set`]).
+fn check_options(options: &Options) -> Result<()> {
+    if let Some(d) = options.mesh.spacing {
+        if !(d.is_finite() && d > 0.0) {
+            return Err(Error::usage(format!("spacing {d} is not a positive distance")));
+        }
+    }
+    if options.mesh.vertices == Some(0) {
+        return Err(Error::usage("the vertex count must be positive"));
+    }
+    if let Some(w) = options.soft {
+        if !(w.is_finite() && w > 0.0) {
+            return Err(Error::usage(format!("soft-constraint weight {w} is not a positive number")));
+        }
+        if !matches!(options.method, Method::NormalControl | Method::ShortPaper) {
+            return Err(Error::usage(format!(
+                "`soft` applies to normal-control and short-paper only, not to {}",
+                options.method.name()
+            )));
+        }
+    }
+    if let Some(s) = options.mesh.snap {
+        if !(s.is_finite() && s > 0.0) {
+            return Err(Error::usage(format!("snapping tolerance {s} is not a positive distance")));
+        }
+    }
+    Ok(())
+}
+
+/// Validation, nodes and segments ([CG] §3.1), splines (the tangents at nodes) and cycles
+/// ([CG] §3.2).
+fn topology(network: &Network, mesh: &MeshOptions, timings: &mut Timings, progress: Progress<'_>) -> Result<Topology> {
+    let clock = Instant::now();
+    let (net, mut warnings) = network.validated()?;
+    let snap = mesh.snap.or(net.snap).unwrap_or_else(|| net.snap_tolerance());
+    let (mut g, w) = find_nodes(&net, snap)?;
+    warnings.extend(w);
+    warnings.extend(trim_dangling(&mut g)?);
+    timings.nodes = seconds_since(clock);
+    progress("nodes", timings.nodes, &format!("{} nodes, {} segments", g.nodes.len(), g.segments.len()));
+
+    let splines: Vec<CurveSpline> = timed(&mut timings.resample, || {
+        g.curves.par_iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect()
+    });
+    let (patches, w) = timed(&mut timings.cycles, || find_patches_open(&mut g, &splines))?;
+    warnings.extend(w);
+    progress("cycles", timings.cycles, &format!("{} patches", patches.len()));
+    Ok(Topology { net, g, splines, patches, snap, warnings })
+}
+
+/// Resamples and tessellates at spacing `d` with planar projections ([CG] §3.3).
+fn planar_stage(topo: &Topology, d: f64, timings: &mut Timings) -> Result<(Resampled, Mesh)> {
+    let res = timed(&mut timings.resample, || resample_network(&topo.g, &topo.splines, d));
+    let mesh = timed(&mut timings.tessellate, || -> Result<Mesh> {
+        let mesh = tessellate(&topo.g, &res, &topo.patches, d)?;
+        manifold(&mesh, &topo.g, &res)?;
+        Ok(mesh)
+    })?;
+    Ok((res, mesh))
+}
+
+/// Better patching ([CG] §6): a coarse first solution (twice the spacing) on planar
+/// projections, then each patch re-tessellated in a conformal flattening of it. `size` (with
+/// the target vertex count), when the spacing was not given: the spacing follows the flattened
+/// domains' area. Returns the mesh, its spacing and its segments' layout.
+fn conformal_stage(
+    topo: &mut Topology,
+    d: f64,
+    size: Option<(&SizeModel, usize)>,
+    timings: &mut Timings,
+    st: &mut SolveTimings,
+    progress: Progress<'_>,
+) -> Result<(Mesh, f64, Vec<[usize; 4]>)> {
+    let (coarse_res, coarse) = planar_stage(topo, 2.0 * d, timings)?;
+    topo.warnings.extend(fold_warnings(&coarse));
+    // The first solution only shapes the flattening: normal-control whatever the method.
+    let ops = cotan_operators(&coarse, Metric::Planar, &coarse.positions);
+    let params = NormalControlParams {
+        options: NormalControlOptions { guide_updates: 1, ..Default::default() },
+        ..Default::default()
+    };
+    let first = normal_control(&coarse, &ops, &params, st)?;
+    let coarse = Mesh { positions: first.positions, ..coarse };
+    let flat = timed(&mut timings.tessellate, || flatten_patches(&topo.patches, &coarse_res, &coarse));
+    let d = match size {
+        Some((size, target)) => {
+            // The vertex count follows the flattened domains' area, not the projections'.
+            let total: f64 = flat.iter().zip(&size.patch_areas).map(|(f, a)| f.as_ref().map_or(*a, |f| f.area)).sum();
+            SizeModel { area: VERTICES_PER_AREA * total, ..size.clone() }.spacing(target)
+        }
+        None => d,
+    };
+    let res = timed(&mut timings.resample, || resample_network(&topo.g, &topo.splines, d));
+    progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
+    let (mesh, kept) = timed(&mut timings.tessellate, || -> Result<_> {
+        let (mesh, kept) = tessellate_conformal(&topo.g, &res, &topo.patches, d, &coarse_res, &flat)?;
+        manifold(&mesh, &topo.g, &res)?;
+        Ok((mesh, kept))
+    })?;
+    let new: Vec<Warning> = fold_warnings(&mesh).into_iter().filter(|w| !topo.warnings.contains(w)).collect();
+    topo.warnings.extend(new);
+    for p in kept {
+        topo.warnings.push(
+            Warning::new(format!("patch {p}: its conformal flattening folds over; it keeps the planar projection"))
+                .patch(p),
+        );
+    }
+    let detail = format!("conformal: {} vertices, {} faces", mesh.num_vertices(), mesh.faces.len());
+    progress("tessellate", timings.tessellate, &detail);
+    Ok((mesh, d, segment_layout(&topo.g, &res)))
+}
+
+/// Checks that the tessellated patches join into an edge-manifold, consistently oriented mesh
+/// ([`crate::geom::mesh::bad_edge`]); an edge in more than two faces means that two patches overlap
+/// (two curves come closer than the spacing between nodes, or a patch folds onto its
+/// neighbour). The error names the patches, the curves and the place.
+fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
+    let Some(([a, b], faces)) = crate::geom::mesh::bad_edge(&mesh.faces) else { return Ok(()) };
+    let mut patches: Vec<u32> = faces.iter().map(|&f| mesh.face_patch[f]).collect();
+    patches.sort_unstable();
+    patches.dedup();
+    let curve_of = |v: u32| {
+        res.segment_vertices.iter().position(|sv| sv.contains(&v)).map(|s| g.labels[g.segments[s].curve].clone())
+    };
+    let mut curves: Vec<String> = [a, b].iter().filter_map(|&v| curve_of(v)).collect();
+    curves.dedup();
+    let list = |v: &[String]| if v.is_empty() { "interior vertices".to_string() } else { v.join(" and ") };
+    let patches: Vec<String> = patches.iter().map(|p| p.to_string()).collect();
+    let segment = [a, b].iter().find_map(|&v| res.segment_vertices.iter().position(|sv| sv.contains(&v)));
+    let e = Error::topology(format!(
+        "patches {} overlap near {} (an edge of {} in {} triangles): the curves come closer than the \
+         mesh spacing between crossings, or a patch folds onto its neighbour; give a smaller `spacing`, \
+         a larger `snap`, or fix the curves there",
+        patches.join(", "),
+        crate::geom::fmt_point(mesh.positions[a as usize]),
+        list(&curves),
+        faces.len()
+    ))
+    .point(mesh.positions[a as usize]);
+    let e = match segment {
+        Some(s) => e.segment(s).curve(g.segments[s].curve),
+        None => e,
+    };
+    Err(match patches.first().and_then(|p| p.parse().ok()) {
+        Some(p) => e.patch(p),
+        None => e,
+    })
+}
+
+/// Sizes that predict the vertex count: free vertices ≈ `c A / d²` over the patches' projected
+/// area `A`, curve vertices ≈ `ℓ / d` over the segments' length `ℓ`.
+#[derive(Clone)]
+struct SizeModel {
+    /// `c A`: the vertices-per-area constant times the domains' total area.
+    area: f64,
+    /// `ℓ`: the segments' total arc length.
+    length: f64,
+    /// Area of each patch's domain (projection or strip).
+    patch_areas: Vec<f64>,
+}
+
+impl SizeModel {
+    /// The model of the network `g` with its `splines` and `patches`.
+    fn new(g: &Graph, splines: &[CurveSpline], patches: &[Patch]) -> Self {
+        let length: f64 = g.segments.iter().map(|s| splines[s.curve].arc_between(s.first, s.last)).sum();
+        let samples = |hs: &[crate::topology::HalfEdge]| -> Vec<DVec3> {
+            hs.iter().flat_map(|&h| half_edge_samples(g, h)).map(|x| x.0).collect()
+        };
+        let patch_areas: Vec<f64> = patches
+            .iter()
+            .map(|p| match p {
+                Patch::Disk(hs) => crate::geom::polygon_vector_area(&samples(hs)).length(),
+                Patch::Tube([a, b]) => {
+                    let (la, lb) = (samples(a), samples(b));
+                    let len = |v: &[DVec3]| (0..v.len()).map(|i| v[i].distance(v[(i + 1) % v.len()])).sum::<f64>();
+                    let c = |v: &[DVec3]| v.iter().sum::<DVec3>() / v.len() as f64;
+                    0.5 * (len(&la) + len(&lb)) * c(&la).distance(c(&lb))
+                }
+            })
+            .collect();
+        SizeModel { area: VERTICES_PER_AREA * patch_areas.iter().sum::<f64>(), length, patch_areas }
+    }
+
+    /// The predicted vertex count at spacing `d`.
+    fn vertices(&self, d: f64) -> f64 {
+        self.area / (d * d) + self.length / d
+    }
+
+    /// The spacing that gives about `target` vertices (`n = c A x² + ℓ x`, `x = 1/d`).
+    fn spacing(&self, target: usize) -> f64 {
+        let (ca, l, n) = (self.area, self.length, target.max(10) as f64);
+        let x = if ca > 0.0 { (-l + (l * l + 4.0 * ca * n).sqrt()) / (2.0 * ca) } else { n / l };
+        1.0 / x
+    }
+}
+
+/// One warning per patch of `mesh` whose planar projection folds over (triangulated in a
+/// fallback domain, see [`crate::tessellate`]).
+fn fold_warnings(mesh: &Mesh) -> Vec<Warning> {
+    mesh.fold_fallback
+        .iter()
+        .map(|p| {
+            Warning::new(format!(
+                "patch {p}: its planar projection folds over (a deep or twisted cycle); it was triangulated on a \
+                 fallback domain (the plane of its vector area, or an ellipse its border is mapped onto by arc length)"
+            ))
+            .patch(*p)
+        })
+        .collect()
+}

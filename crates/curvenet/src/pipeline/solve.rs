@@ -1,0 +1,228 @@
+//! The final solve on a prepared mesh ([CG] §3.4; docs/design.md §1, steps 7–10): the
+//! operators of the patches' domains, the method ([`crate::methods::SurfacingMethod`]), then
+//! normal-control's 3D iterations, then the result's normals, curvature and statistics.
+
+use super::options::Options;
+use super::prepare::{Prepared, Progress};
+use super::stats::{Stats, Surface, Timings};
+use crate::error::{Error, Result, Warning};
+use crate::geom::mesh::Mesh;
+use crate::methods::andrews2011::Andrews2011;
+use crate::methods::eg2016::{ShortPaper, ShortPaperParams};
+use crate::methods::iterated::{Iterated, IterationParams, Stop};
+use crate::methods::method4::Method4;
+use crate::methods::normal_control::{NormalControl, NormalControlParams};
+use crate::methods::polyharmonic::Polyharmonic;
+use crate::methods::{Energy, Method, MethodResult, SurfacingMethod};
+use crate::operators::{cotan_operators, normals_and_mean_curvature, Metric, Operators};
+use crate::solve::timing::{seconds_since, timed, Instant};
+use std::borrow::Cow;
+
+/// What a [`crate::Surfacer`] keeps between solves on one prepared mesh: the method with its
+/// factorisations and the iterations with their symbolic analysis.
+pub(crate) struct Kept {
+    method: Box<dyn SurfacingMethod>,
+    iterated: Option<Iterated>,
+}
+
+impl Kept {
+    /// Whether a factorisation is kept.
+    pub(crate) fn is_factored(&self) -> bool {
+        self.method.is_factored()
+    }
+
+    /// The network's curves moved (see [`SurfacingMethod::set_curves`]).
+    pub(crate) fn set_curves(&mut self, curves: &[(Vec<crate::geom::DVec3>, bool)]) {
+        self.method.set_curves(curves);
+    }
+}
+
+/// The soft-constraint weight per curve vertex for `soft = s` (see [`Options::soft`]):
+/// `d / (s h)³` with the spacing `d` and the mean input sample spacing `h`; the uniform energy
+/// carries an extra `1/area` factor, compensated by the mean vertex area.
+fn soft_weight(options: &Options, s: f64, input_spacing: f64, mean_area: f64, spacing: f64) -> f64 {
+    let base = spacing / (s * input_spacing).powi(3);
+    match options.normal_control.energy {
+        Energy::Area => base,
+        Energy::Uniform => base / mean_area,
+    }
+}
+
+/// The method object of `options.method` with its scales from the operators `ops`.
+fn make_method(options: &Options, prepared: &Prepared, ops: &Operators) -> Box<dyn SurfacingMethod> {
+    let mean_area = ops.mass.iter().sum::<f64>() / ops.mass.len() as f64;
+    let soft = |s: f64| soft_weight(options, s, prepared.input_spacing, mean_area, prepared.spacing);
+    let mesh = &prepared.mesh;
+    match options.method {
+        Method::NormalControl => Box::new(NormalControl::new(NormalControlParams {
+            options: options.normal_control,
+            soft_weight: options.soft.map(soft),
+        })),
+        Method::Biharmonic => Box::new(Polyharmonic::new(2)),
+        Method::Triharmonic => Box::new(Polyharmonic::new(3)),
+        Method::Method4 => Box::new(Method4::new()),
+        Method::ShortPaper => {
+            // ω₁ = w1 / s⁴ with s the mean patch size.
+            let area: f64 = ops.mass.iter().sum();
+            let patch_count = mesh.face_patch.iter().max().map_or(1, |m| *m as usize + 1);
+            let s = (area / patch_count as f64).sqrt();
+            Box::new(ShortPaper::new(ShortPaperParams {
+                omega1: options.short_paper.w1 / s.powi(4),
+                omega0: options.soft.map(soft),
+            }))
+        }
+        Method::Cauchy => Box::new(Andrews2011::new(prepared.curves.clone(), options.cauchy.clone(), prepared.snap)),
+    }
+}
+
+/// The operators of the patches' domains, checked: a vertex without area is a numerical error
+/// naming its patch.
+fn domain_operators(mesh: &Mesh) -> Result<Operators> {
+    let ops = cotan_operators(mesh, Metric::Planar, &mesh.positions);
+    if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
+        let patch = mesh.faces.iter().position(|f| f.contains(&(i as u32))).map(|f| mesh.face_patch[f]);
+        let at = patch.map_or_else(String::new, |p| format!(" of patch {p}"));
+        let e = Error::numerical(format!("vertex {i}{at} has zero area: degenerate triangles around it")).vertex(i);
+        return Err(match patch {
+            Some(p) => e.patch(p as usize),
+            None => e,
+        });
+    }
+    Ok(ops)
+}
+
+/// The final solve on a prepared mesh: the method, then the 3D iterations. `kept`, when given,
+/// holds the method and iterations of earlier solves on the same mesh and options (empty:
+/// created here and stored); without it the method's factorisations are freed before the
+/// iterations (lower peak memory). `base` are the timings of the stages before (added to).
+/// An owned `prepared` gives its mesh to the result; a borrowed one is copied.
+pub(crate) fn solve_prepared(
+    prepared: Cow<'_, Prepared>,
+    options: &Options,
+    progress: Progress<'_>,
+    kept: Option<&mut Option<Kept>>,
+    base: Timings,
+) -> Result<Surface> {
+    let start = Instant::now();
+    let mut timings = base;
+    let mut st = prepared.solve_timings;
+    let mut warnings = prepared.warnings.clone();
+    let mesh = &prepared.mesh;
+    let ops = timed(&mut st.operators, || domain_operators(mesh))?;
+    let keep = kept.is_some();
+    let mut one_shot: Option<Kept> = None;
+    let slot: &mut Option<Kept> = match kept {
+        Some(k) => k,
+        None => &mut one_shot,
+    };
+    let state = slot.get_or_insert_with(|| Kept { method: make_method(options, &prepared, &ops), iterated: None });
+    let mut result = state.method.solve(mesh, &ops, &mut st)?;
+    drop(ops);
+    if !keep {
+        // Lower peak memory: the iterations factorise their own systems.
+        state.method.release();
+    }
+    let mut iteration_report: (Vec<f64>, Option<Stop>) = (Vec::new(), None);
+    // The baselines keep the weights of their patching's domains, as in [CG] Table 1.
+    if options.iterate.iterations > 0 && options.method == Method::NormalControl {
+        let (r, report) = iterate(options, &prepared, result, state, &mut st)?;
+        result = r;
+        let stopped = |why: &str| {
+            Warning::new(format!(
+                "the 3D iteration stopped after {} step(s): {why}; the last good surface is kept",
+                report.updates.len()
+            ))
+        };
+        match report.stop {
+            Stop::Degenerate => warnings.push(stopped("a triangle degenerated")),
+            Stop::Diverging => warnings.push(stopped("its updates grew")),
+            Stop::Converged | Stop::MaxIterations => {}
+        }
+        iteration_report = (report.updates, Some(report.stop));
+    }
+    timings.operators = st.operators;
+    timings.factor = st.factor;
+    timings.solve = st.solve;
+    progress("solve", st.operators + st.factor + st.solve, options.method.name());
+    Ok(finish(prepared, options, result, iteration_report, warnings, timings, base, start))
+}
+
+/// Normal-control's 3D iterations from `result`, with the iterations object `state` keeps
+/// (created on the first run; its parameters follow the current surface).
+fn iterate(
+    options: &Options,
+    prepared: &Prepared,
+    result: MethodResult,
+    state: &mut Kept,
+    st: &mut crate::solve::SolveTimings,
+) -> Result<(MethodResult, crate::methods::iterated::IterationReport)> {
+    let (mesh, d) = (&prepared.mesh, prepared.spacing);
+    let area: f64 = mesh
+        .faces
+        .iter()
+        .map(|f| {
+            let p = |k: usize| result.positions[f[k] as usize];
+            0.5 * (p(1) - p(0)).cross(p(2) - p(0)).length()
+        })
+        .sum();
+    let mean_area = area / mesh.num_vertices() as f64;
+    let params = IterationParams {
+        options: options.iterate,
+        patch_size: (area / prepared.patches.max(1) as f64).sqrt(),
+        spacing: d,
+        energy: options.normal_control.energy,
+        soft_weight: options.soft.map(|s| soft_weight(options, s, prepared.input_spacing, mean_area, d)),
+    };
+    let iterated = state.iterated.get_or_insert_with(|| Iterated::new(params));
+    iterated.params = params;
+    iterated.run(mesh, result, st)
+}
+
+/// The surface of a finished solve: the result's positions on the prepared mesh, its normals
+/// and mean curvature, the statistics.
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    prepared: Cow<'_, Prepared>,
+    options: &Options,
+    result: MethodResult,
+    iteration_report: (Vec<f64>, Option<Stop>),
+    warnings: Vec<Warning>,
+    mut timings: Timings,
+    base: Timings,
+    start: Instant,
+) -> Surface {
+    let (cycles, components, nodes, segments, d) =
+        (prepared.patches, prepared.components, prepared.nodes, prepared.segments, prepared.spacing);
+    let clock = Instant::now();
+    let mut mesh = prepared.into_owned().mesh;
+    mesh.positions = result.positions;
+    let (normals, mean_curvature) = normals_and_mean_curvature(&mesh.faces, &mesh.positions, &mesh.on_boundary);
+    timings.operators += seconds_since(clock);
+    timings.total = base.total + seconds_since(start);
+    let stats = Stats {
+        vertices: mesh.num_vertices(),
+        faces: mesh.faces.len(),
+        curve_vertices: mesh.num_curve,
+        cycles,
+        components,
+        nodes,
+        segments,
+        spacing: d,
+        method: options.method.name().to_string(),
+        iterations: iteration_report.0.len(),
+        iteration_stop: iteration_report.1.map(|s| s.name().to_string()),
+        iteration_updates: iteration_report.0,
+        peak_memory_bytes: None,
+        timings,
+    };
+    let curve_flags = mesh.curve_flags();
+    Surface {
+        mesh,
+        normals,
+        mean_curvature,
+        propagated_normals: result.propagated_normals,
+        curve_flags,
+        stats,
+        warnings,
+    }
+}

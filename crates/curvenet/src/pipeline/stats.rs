@@ -1,0 +1,99 @@
+//! What a run returns: the surface, its statistics and per-stage timings (docs/design.md §5,
+//! the `--stats` file; the names are stable, benchmarks read them).
+
+use crate::error::Warning;
+use crate::geom::mesh::Mesh;
+use crate::geom::DVec3;
+use crate::io::MeshData;
+use serde::Serialize;
+
+/// Seconds per stage.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct Timings {
+    /// Reading the input file (front ends).
+    pub read: f64,
+    /// Validation, nodes and segments.
+    pub nodes: f64,
+    /// Splines and resampling.
+    pub resample: f64,
+    /// Cycles (patches).
+    pub cycles: f64,
+    /// Tessellation (with the conformal flattening).
+    pub tessellate: f64,
+    /// Operators, system matrices and right-hand sides.
+    pub operators: f64,
+    /// Factorisations.
+    pub factor: f64,
+    /// Triangular solves.
+    pub solve: f64,
+    /// Writing the output (front ends).
+    pub write: f64,
+    /// The whole run.
+    pub total: f64,
+}
+
+/// Statistics of a run.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Stats {
+    /// Vertices of the mesh.
+    pub vertices: usize,
+    /// Triangles of the mesh.
+    pub faces: usize,
+    /// Vertices on the curves (they come first).
+    pub curve_vertices: usize,
+    /// Patches (cycles and tubes).
+    pub cycles: usize,
+    /// Connected components of the network.
+    pub components: usize,
+    /// Nodes where curves meet.
+    pub nodes: usize,
+    /// Segments between nodes.
+    pub segments: usize,
+    /// Target edge length of the mesh.
+    pub spacing: f64,
+    /// The method's name.
+    pub method: String,
+    /// Iterations of the 3D-operator loop that ran (0: planar weights only).
+    pub iterations: usize,
+    /// Why the loop stopped: `converged`, `max-iterations`, `degenerate`, `diverging`.
+    pub iteration_stop: Option<String>,
+    /// Largest vertex update of each iteration.
+    pub iteration_updates: Vec<f64>,
+    /// Peak resident memory of the process in bytes, when the front end measured it.
+    pub peak_memory_bytes: Option<u64>,
+    /// Seconds per stage.
+    pub timings: Timings,
+}
+
+/// The result of a surfacing run.
+#[derive(Clone, Debug)]
+pub struct Surface {
+    /// The mesh with its final positions; vertices `0..mesh.num_curve` lie on the curves.
+    pub mesh: Mesh,
+    /// Unit vertex normals of the final mesh.
+    pub normals: Vec<DVec3>,
+    /// Signed mean curvature of the final mesh (cotangent formula; 0 on open boundaries).
+    pub mean_curvature: Vec<f64>,
+    /// The propagated normals `N*` (normal-control, method4, short-paper).
+    pub propagated_normals: Option<Vec<DVec3>>,
+    /// Per vertex: lies on a curve (the PLY `curve` flag).
+    pub curve_flags: Vec<bool>,
+    /// The run's statistics.
+    pub stats: Stats,
+    /// What was repaired, assumed or left out.
+    pub warnings: Vec<Warning>,
+}
+
+impl Surface {
+    /// The mesh and its attributes, for [`crate::io::write_mesh`].
+    pub fn mesh_data(&self) -> MeshData<'_> {
+        MeshData {
+            positions: &self.mesh.positions,
+            faces: &self.mesh.faces,
+            normals: Some(&self.normals),
+            mean_curvature: Some(&self.mean_curvature),
+            curve_vertex: Some(&self.curve_flags),
+            propagated_normals: self.propagated_normals.as_deref(),
+        }
+    }
+}

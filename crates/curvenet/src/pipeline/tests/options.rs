@@ -1,0 +1,74 @@
+use super::*;
+
+#[test]
+fn every_option_round_trips_through_its_name() {
+    for preset in Preset::ALL {
+        let o = Options::preset(preset);
+        for spec in OPTIONS {
+            let mut again = Options::preset(preset);
+            if let Some(v) = o.get(spec.name) {
+                again.set(spec.name, &v).unwrap_or_else(|e| panic!("{}: {e}", spec.name));
+            }
+            assert_eq!(again, o, "{} in preset {}", spec.name, preset.name());
+        }
+    }
+}
+
+#[test]
+fn names_are_unique_and_lowercase() {
+    let mut names: Vec<&str> = OPTIONS.iter().map(|s| s.name).collect();
+    assert!(names.iter().all(|n| n.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')));
+    names.sort_unstable();
+    let n = names.len();
+    names.dedup();
+    assert_eq!(names.len(), n);
+}
+
+#[test]
+fn presets_are_defined_once() {
+    let paper = Options::preset(Preset::Paper);
+    assert_eq!(paper.mesh.patching, Patching::Planar);
+    assert_eq!(paper.iterate.iterations, 0);
+    assert_eq!(paper.normal_control.energy, Energy::Uniform);
+    assert_eq!(paper.normal_control.guide_area, GuideArea::Surface);
+    assert_eq!(paper.normal_control.guide_updates, 0);
+    assert_eq!(paper.cauchy.ghost_updates, 0);
+    let fast = Options::fast();
+    assert_eq!((fast.mesh.patching, fast.iterate.iterations), (Patching::Planar, 0));
+    assert_eq!(fast.normal_control, Options::default().normal_control);
+    assert_eq!(Preset::from_name("paper").unwrap(), Preset::Paper);
+    assert!(matches!(Preset::from_name("quick"), Err(Error::Usage { .. })));
+}
+
+#[test]
+fn named_values_override_the_preset_and_bad_ones_are_usage_errors() {
+    let o = Options::from_named(Preset::Paper, &[("iterations", "3"), ("method", "cauchy"), ("w1", "2e5")]).unwrap();
+    assert_eq!(o.iterate.iterations, 3);
+    assert_eq!(o.method, Method::Cauchy);
+    assert_eq!(o.short_paper.w1, 2e5);
+    assert_eq!(o.normal_control.energy, Energy::Uniform);
+    for (name, value, says) in [
+        ("vertices", "0", "`vertices` takes a positive whole number"),
+        ("spacing", "-1", "`spacing` takes a positive distance"),
+        ("method", "magic", "`method` takes one of normal-control"),
+        ("order", "4", "`order` takes 1, 2 or 3"),
+        ("tolerance", "nan", "`tolerance` takes a number ≥ 0"),
+        ("colour", "red", "unknown option \"colour\""),
+    ] {
+        let e = Options::default().clone().set(name, value).unwrap_err();
+        assert!(matches!(e, Error::Usage { .. }) && e.to_string().contains(says), "{name}: {e}");
+    }
+    let both = Options::from_named(Preset::Default, &[("spacing", "0.1"), ("vertices", "100")]);
+    assert!(both.unwrap_err().to_string().contains("not both"));
+}
+
+#[test]
+fn every_option_has_help_and_a_default() {
+    for spec in OPTIONS {
+        assert!(spec.help.len() > 20, "{}", spec.name);
+        assert!(!spec.default_text().is_empty(), "{}", spec.name);
+        for c in spec.choices {
+            Options::default().set(spec.name, c).unwrap();
+        }
+    }
+}
