@@ -13,8 +13,8 @@
 
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
-use crate::solve::Cholesky;
 use crate::solve::sparse::Csc;
+use crate::solve::Cholesky;
 use faer::Mat;
 
 /// LSCM parameterisation of a triangle mesh with disk topology (`faces` counter-clockwise).
