@@ -98,3 +98,7 @@ pub(super) fn ellipse_domain(p3: &[DVec3], n: DVec3) -> Vec<DVec2> {
         })
         .collect()
 }
+
+#[cfg(test)]
+#[path = "tests/fallback.rs"]
+mod tests;

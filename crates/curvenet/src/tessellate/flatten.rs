@@ -115,3 +115,7 @@ pub(super) fn conformal_disk(
     let centroid = ids.iter().map(|&i| res.positions[i as usize]).sum::<DVec3>() / ids.len() as f64;
     Some(lift_patch(tris, &pos2, &map, |_| centroid, &what))
 }
+
+#[cfg(test)]
+#[path = "tests/flatten.rs"]
+mod tests;

@@ -214,3 +214,7 @@ impl<'a> BorderGrid<'a> {
         false
     }
 }
+
+#[cfg(test)]
+#[path = "tests/lattice.rs"]
+mod tests;

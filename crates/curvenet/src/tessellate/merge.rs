@@ -67,3 +67,7 @@ pub(super) fn merge(res: &Resampled, parts: Vec<Result<PatchMesh>>) -> Result<Me
     }
     Ok(mesh)
 }
+
+#[cfg(test)]
+#[path = "tests/merge.rs"]
+mod tests;

@@ -139,3 +139,7 @@ pub fn tessellate_conformal(
     let kept: Vec<usize> = parts.iter().enumerate().filter(|(_, p)| p.1).map(|(i, _)| i).collect();
     Ok((merge::merge(res, parts.into_iter().map(|p| p.0).collect())?, kept))
 }
+
+#[cfg(test)]
+#[path = "tests/tessellate.rs"]
+mod tests;

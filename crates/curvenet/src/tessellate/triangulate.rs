@@ -218,3 +218,7 @@ pub(super) fn lift_patch(
     }
     Ok(PatchMesh { new_positions, triangles, planar, fold_fallback: false })
 }
+
+#[cfg(test)]
+#[path = "tests/triangulate.rs"]
+mod tests;

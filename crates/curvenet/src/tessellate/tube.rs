@@ -91,3 +91,7 @@ pub(super) fn tessellate_tube(
     };
     lift_patch(tris, &pos2, &map, lift, &what)
 }
+
+#[cfg(test)]
+#[path = "tests/tube.rs"]
+mod tests;

@@ -274,3 +274,7 @@ pub(super) fn check_boundary_sides(g: &Graph, faces: &Faces, parts: &Parts) -> R
     }
     Ok(())
 }
+
+#[cfg(test)]
+#[path = "tests/faces.rs"]
+mod tests;

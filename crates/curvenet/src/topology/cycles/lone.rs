@@ -182,3 +182,7 @@ pub(super) fn conormal_score(p: &[DVec3], n: &[DVec3], dir: impl Fn(DVec3) -> DV
         0.0
     }
 }
+
+#[cfg(test)]
+#[path = "tests/lone.rs"]
+mod tests;

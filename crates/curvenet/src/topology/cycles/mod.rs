@@ -153,3 +153,7 @@ pub fn find_patches_open(g: &mut Graph, splines: &[CurveSpline]) -> Result<(Vec<
     }
     Err(Error::topology("internal error: leaving out slits did not converge"))
 }
+
+#[cfg(test)]
+#[path = "tests/cycles.rs"]
+mod tests;

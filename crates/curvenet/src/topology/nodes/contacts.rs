@@ -290,3 +290,7 @@ pub(super) fn cluster_contacts(lines: &Polylines, hits: &[Hit], snap: f64) -> Ve
     }
     clusters
 }
+
+#[cfg(test)]
+#[path = "tests/contacts.rs"]
+mod tests;

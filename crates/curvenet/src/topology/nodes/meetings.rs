@@ -231,3 +231,7 @@ pub(super) fn polyline_distance(points: &[DVec3], arc: &[f64], closed: bool, cen
     }
     best
 }
+
+#[cfg(test)]
+#[path = "tests/meetings.rs"]
+mod tests;

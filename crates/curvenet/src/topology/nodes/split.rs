@@ -172,3 +172,7 @@ pub(super) fn segments_of(split: &[SplitCurve], labels: &[String]) -> Result<Vec
 fn total_scale(points: &[DVec3]) -> f64 {
     Aabb::of(points.iter().copied()).diagonal().max(f64::MIN_POSITIVE)
 }
+
+#[cfg(test)]
+#[path = "tests/split.rs"]
+mod tests;
