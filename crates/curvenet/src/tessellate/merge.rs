@@ -50,7 +50,7 @@ pub(super) fn merge(res: &Resampled, parts: Vec<Result<PatchMesh>>) -> Result<Me
     }
     mesh.on_boundary.resize(mesh.positions.len(), false);
     if mesh.positions.len() > u32::MAX as usize {
-        return Err(Error::usage("the mesh would exceed 4 billion vertices; increase the spacing"));
+        return Err(Error::usage("the mesh would exceed 4 billion vertices; increase `spacing`"));
     }
     // Every curve vertex must be used by some face (a vertex left out means a broken patch).
     let mut used = vec![false; mesh.positions.len()];
@@ -63,7 +63,9 @@ pub(super) fn merge(res: &Resampled, parts: Vec<Result<PatchMesh>>) -> Result<Me
         return Err(Error::topology(format!(
             "vertex {i} at {} is not part of any patch (a curve that bounds no patch?)",
             fmt_point(mesh.positions[i])
-        )));
+        ))
+        .vertex(i)
+        .point(mesh.positions[i]));
     }
     Ok(mesh)
 }

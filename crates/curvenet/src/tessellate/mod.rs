@@ -98,14 +98,17 @@ fn describe_patch(g: &Graph, hs: &[HalfEdge]) -> String {
 }
 
 /// Tessellates every patch at spacing `d` and merges them into one mesh whose first vertices
-/// are the curve vertices of `res`.
+/// are the curve vertices of `res`. The errors of a patch name it ([`crate::error::At::patch`]).
 pub fn tessellate(g: &Graph, res: &Resampled, patches: &[Patch], d: f64) -> Result<Mesh> {
     let parts: Vec<Result<PatchMesh>> = patches
         .par_iter()
         .enumerate()
-        .map(|(i, p)| match p {
-            Patch::Disk(hs) => planar::tessellate_disk(g, res, hs, d, i),
-            Patch::Tube(loops) => tube::tessellate_tube(g, res, loops, d, i),
+        .map(|(i, p)| {
+            let part = match p {
+                Patch::Disk(hs) => planar::tessellate_disk(g, res, hs, d, i),
+                Patch::Tube(loops) => tube::tessellate_tube(g, res, loops, d, i),
+            };
+            part.map_err(|e| e.patch(i))
         })
         .collect();
     merge::merge(res, parts)
@@ -127,13 +130,16 @@ pub fn tessellate_conformal(
     let parts: Vec<(Result<PatchMesh>, bool)> = patches
         .par_iter()
         .enumerate()
-        .map(|(i, p)| match (p, &flat[i]) {
-            (Patch::Disk(hs), Some(f)) => match flatten::conformal_disk(g, res, hs, d, i, coarse_res, f) {
-                Some(part) => (part, false),
-                None => (planar::tessellate_disk(g, res, hs, d, i), true),
-            },
-            (Patch::Disk(hs), None) => (planar::tessellate_disk(g, res, hs, d, i), true),
-            (Patch::Tube(loops), _) => (tube::tessellate_tube(g, res, loops, d, i), false),
+        .map(|(i, p)| {
+            let (part, kept) = match (p, &flat[i]) {
+                (Patch::Disk(hs), Some(f)) => match flatten::conformal_disk(g, res, hs, d, i, coarse_res, f) {
+                    Some(part) => (part, false),
+                    None => (planar::tessellate_disk(g, res, hs, d, i), true),
+                },
+                (Patch::Disk(hs), None) => (planar::tessellate_disk(g, res, hs, d, i), true),
+                (Patch::Tube(loops), _) => (tube::tessellate_tube(g, res, loops, d, i), false),
+            };
+            (part.map_err(|e| e.patch(i)), kept)
         })
         .collect();
     let kept: Vec<usize> = parts.iter().enumerate().filter(|(_, p)| p.1).map(|(i, _)| i).collect();

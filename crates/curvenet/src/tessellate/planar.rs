@@ -88,7 +88,8 @@ pub(super) fn tessellate_disk(g: &Graph, res: &Resampled, hs: &[HalfEdge], d: f6
              corner across a crease); the patch cannot be triangulated in a plane",
             what(),
             fmt_point(p3[i])
-        )),
+        ))
+        .point(p3[i]),
     };
     fallback::tessellate_folded(&cycle, n, area_n, d, &what, first)
 }

@@ -209,7 +209,7 @@ pub(super) fn lift_patch(
         let r = [map[t[0]], map[t[1]], map[t[2]]];
         if r[0] == r[1] || r[1] == r[2] || r[0] == r[2] {
             return Err(Error::topology(format!(
-                "{}: the patch is too narrow for the spacing (a triangle would join a vertex to itself); lower the spacing",
+                "{}: the patch is too narrow for the spacing (a triangle would join a vertex to itself); lower `spacing`",
                 what()
             )));
         }

@@ -68,5 +68,3 @@ pub fn resample_network(g: &Graph, splines: &[CurveSpline], d: f64) -> Resampled
     }
     r
 }
-
-

@@ -37,6 +37,7 @@ fn a_curve_vertex_that_no_patch_uses_is_a_topology_error() {
     let Err(e) = merge(&corners(), vec![Ok(part(vec![[C(0), C(1), C(2)]], Vec::new()))]) else { panic!("accepted") };
     assert!(matches!(e, Error::Topology { .. }), "{e}");
     assert!(e.to_string().starts_with("vertex 3 at"), "{e}");
+    assert_eq!((e.at().vertex, e.at().point), (Some(3), Some([0.0, 1.0, 0.0])));
 }
 
 #[test]

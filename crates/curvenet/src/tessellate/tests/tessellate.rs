@@ -1,5 +1,6 @@
 use super::*;
 use crate::curves::CurveSpline;
+use crate::error::Error;
 use crate::network::{Curve, Network};
 use crate::topology::resample::resample_network;
 use crate::topology::{find_nodes, find_patches};
@@ -76,4 +77,34 @@ fn a_square_patch_is_tessellated_into_a_disk_of_its_area() {
     let free = (mesh.positions.len() - mesh.num_curve) as f64;
     let expected = VERTICES_PER_AREA / (d * d);
     assert!((free / expected - 1.0).abs() < 0.15, "{free} free vertices, expected about {expected}");
+}
+
+/// Two patches by hand: a right triangle (nodes 0–2) and three collinear nodes (3–5), whose
+/// cycle encloses no area. The error names patch 1.
+#[test]
+fn the_error_of_a_patch_names_it() {
+    use crate::topology::Segment;
+    let p = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.0, 0.0], [1.0, 0.0], [2.0, 0.0]];
+    let positions: Vec<DVec3> = p.iter().map(|&[x, y]| DVec3::new(x, y, 0.0)).collect();
+    let nodes = positions.iter().map(|&position| crate::topology::Node { position, normal: DVec3::Z }).collect();
+    let next = |s: usize| 3 * (s / 3) + (s + 1) % 3;
+    let segments =
+        (0..6).map(|s| Segment { curve: s, first: 0, last: 1, start: s, end: next(s), boundary: true }).collect();
+    let g = Graph { nodes, curves: Vec::new(), segments, labels: (0..6).map(|c| format!("curve {c}")).collect() };
+    let res = Resampled {
+        normals: vec![DVec3::Z; 6],
+        on_boundary: vec![true; 6],
+        segment_vertices: (0..6).map(|s| vec![s as u32, next(s) as u32]).collect(),
+        positions,
+    };
+    let cycle = |k: usize| Patch::Disk((3 * k..3 * k + 3).map(|segment| HalfEdge { segment, forward: true }).collect());
+    let Err(e) = tessellate(&g, &res, &[cycle(0), cycle(1)], 0.5) else { panic!("accepted") };
+    assert!(
+        e.to_string().starts_with("patch 1 (bounded by curve 3, curve 4, curve 5): the cycle encloses no area"),
+        "{e}"
+    );
+    assert_eq!(e.at().patch, Some(1));
+    // The first patch alone is fine.
+    let mesh = tessellate(&g, &res, &[cycle(0)], 0.5);
+    assert!(matches!(mesh, Err(Error::Topology { .. })), "vertices 3–5 bound no patch: {mesh:?}");
 }

@@ -43,7 +43,10 @@ pub(super) fn check_valence(g: &Graph, ends: &NodeEnds) -> Result<()> {
                 "{} ends at {} without meeting another curve: a dangling segment cannot bound a patch; {what}",
                 g.labels[seg.curve],
                 g.describe_node(v)
-            )));
+            ))
+            .curve(seg.curve)
+            .segment(list[0].0)
+            .node(v));
         }
     }
     // A 2-manifold's border passes through a node once or not at all: 0 or 2 boundary ends.
@@ -58,7 +61,8 @@ pub(super) fn check_valence(g: &Graph, ends: &NodeEnds) -> Result<()> {
                 boundary.len(),
                 g.describe_node(v),
                 names.join(", ")
-            )));
+            ))
+            .node(v));
         }
     }
     Ok(())
@@ -101,7 +105,10 @@ impl Rotation {
                         "{} leaves {} along the node's normal: normals must be perpendicular to the curves",
                         g.labels[seg.curve],
                         g.describe_node(v)
-                    )));
+                    ))
+                    .curve(seg.curve)
+                    .segment(s)
+                    .node(v));
                 }
                 keyed.push((proj.dot(e2).atan2(proj.dot(e1)), s, at_start));
             }
@@ -167,7 +174,7 @@ pub(super) fn trace_faces(g: &Graph, rot: &Rotation) -> Result<Faces> {
                     break;
                 }
                 if face.len() > 2 * ns {
-                    return Err(Error::topology("internal error: face tracing did not close"));
+                    return Err(Error::internal("face tracing did not close"));
                 }
             }
             faces.push(face);
@@ -260,14 +267,18 @@ pub(super) fn check_boundary_sides(g: &Graph, faces: &Faces, parts: &Parts) -> R
                     "{} is tagged as boundary but has patches on both sides; remove the boundary tag from {}",
                     g.describe_segment(s),
                     g.labels[seg.curve]
-                )))
+                ))
+                .curve(seg.curve)
+                .segment(s))
             }
             (false, false) => {
                 return Err(Error::topology(format!(
                     "{} is tagged as boundary but bounds no patch: near it the network is not a 2-manifold \
                      (a segment shared by more than two patches, or normals that disagree in orientation)",
                     g.describe_segment(s)
-                )))
+                ))
+                .curve(seg.curve)
+                .segment(s))
             }
             _ => {}
         }

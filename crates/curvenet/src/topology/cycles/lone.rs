@@ -52,7 +52,9 @@ pub(super) fn lone_loops(
                 "the boundary curves around {} form a network without interior curves that is not a single loop; \
                  tag only the outer border as boundary",
                 g.describe_segment(seg)
-            )));
+            ))
+            .curve(g.segments[seg].curve)
+            .segment(seg));
         }
         let a = faces.faces[fs[0]].clone();
         let b = faces.faces[fs[1]].clone();
@@ -141,7 +143,8 @@ pub(super) fn lone_disk(l: &Lone) -> Result<Patch> {
                  tangent to the plane of the loop and point nowhere near its inside; give another loop for a tube \
                  or tilt the normals",
                 fmt_point(l.points[0])
-            )));
+            ))
+            .point(l.points[0]));
         }
         s > 0.0
     };

@@ -87,7 +87,9 @@ pub fn find_patches(g: &Graph, splines: &[CurveSpline]) -> Result<Vec<Patch>> {
              cannot be surfaced; remove it or connect both of its ends to other curves (if it crosses \
              another curve without meeting it at a node, raise the snapping tolerance)",
             g.describe_segment(slits[0])
-        ))),
+        ))
+        .curve(g.segments[slits[0]].curve)
+        .segment(slits[0])),
     }
 }
 
@@ -136,14 +138,19 @@ pub fn find_patches_open(g: &mut Graph, splines: &[CurveSpline]) -> Result<(Vec<
                         "{} is a boundary segment with the same patch on both sides: the boundary cuts into the \
                          surface; remove its boundary tag or connect it",
                         g.describe_segment(s)
-                    )));
+                    ))
+                    .curve(g.segments[s].curve)
+                    .segment(s));
                 }
                 for &s in slits.iter().take(10) {
-                    warnings.push(crate::error::Warning::new(format!(
-                        "{} has the same patch on both sides (a curve that cuts into a patch, or curves snapped \
+                    warnings.push(
+                        crate::error::Warning::new(format!(
+                            "{} has the same patch on both sides (a curve that cuts into a patch, or curves snapped \
                          into a bridge): it was left out of the surface",
-                        g.describe_segment(s)
-                    )));
+                            g.describe_segment(s)
+                        ))
+                        .curve(g.segments[s].curve),
+                    );
                 }
                 super::open::remove_segments(g, &slits);
                 warnings.extend(super::open::trim_dangling(g)?);
@@ -151,7 +158,7 @@ pub fn find_patches_open(g: &mut Graph, splines: &[CurveSpline]) -> Result<(Vec<
             }
         }
     }
-    Err(Error::topology("internal error: leaving out slits did not converge"))
+    Err(Error::internal("leaving out slits did not converge"))
 }
 
 #[cfg(test)]

@@ -76,10 +76,12 @@ pub(super) fn passages(lines: &Polylines, hits: &[Hit], cluster: &[usize], snap:
             let other = others.first().copied().unwrap_or("itself");
             return Err(Error::input(format!(
                 "{} runs within the snapping tolerance ({snap:.3e}) of {other} for a length of {extent:.3e} near {}: \
-                 overlapping or coincident curves cannot be surfaced; remove the duplicate or lower \"snap\"",
+                 overlapping or coincident curves cannot be surfaced; remove the duplicate or lower `snap`",
                 labels[c],
                 fmt_point(lines.point_at(locs[i].2)),
-            )));
+            ))
+            .curve(c)
+            .point(lines.point_at(locs[i].2)));
         }
         // The passage at the middle location of the run.
         passages.push(locs[(i + j - 1) / 2]);
@@ -145,11 +147,13 @@ pub(super) fn check_overlap(lines: &Polylines, passages: &[Passage], snap: f64) 
                     return Err(Error::input(format!(
                         "{} runs within the snapping tolerance ({snap:.3e}) of {} near {}: overlapping or coincident \
                          curves (or curves touching at a very shallow angle) cannot be surfaced; remove the duplicate \
-                         or lower \"snap\"",
+                         or lower `snap`",
                         labels[pa.0],
                         if pa.0 == pb.0 { "itself".to_string() } else { labels[pb.0].clone() },
                         fmt_point(lines.point_at(pa.2)),
-                    )));
+                    ))
+                    .curve(pa.0)
+                    .point(lines.point_at(pa.2)));
                 }
             }
         }
@@ -177,7 +181,9 @@ pub(super) fn meeting_node(lines: &Polylines, passages: &[Passage]) -> Result<No
                     labels[passages[b].0],
                     fmt_point(position),
                     cos.clamp(-1.0, 1.0).acos().to_degrees()
-                )));
+                ))
+                .curve(passages[a].0)
+                .point(position));
             }
         }
     }

@@ -151,10 +151,12 @@ pub(super) fn segments_of(split: &[SplitCurve], labels: &[String]) -> Result<Vec
         for i in 1..m {
             if sc.points[i].distance(sc.points[i - 1]) <= 1e-12 * total_scale(&sc.points) {
                 return Err(Error::input(format!(
-                    "{}: two nodes fall on the same point {} (crossings closer than the sampling); resample the curve more finely or lower \"snap\"",
+                    "{}: two nodes fall on the same point {} (crossings closer than the sampling); resample the curve more finely or lower `snap`",
                     labels[c],
                     fmt_point(sc.points[i])
-                )));
+                ))
+                .curve(c)
+                .point(sc.points[i]));
             }
         }
         let k = sc.nodes.len();

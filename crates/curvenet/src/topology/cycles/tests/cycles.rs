@@ -44,6 +44,7 @@ fn a_bridge_between_two_loops_is_a_slit() {
     let Err(e) = find_patches(&g, &splines) else { panic!("accepted") };
     assert!(e.to_string().starts_with("segment 2 (curve 2, from node"), "{e}");
     assert!(e.to_string().contains("has the same patch on both sides"), "{e}");
+    assert_eq!((e.at().segment, e.at().curve), (Some(2), Some(2)));
 }
 
 /// Three great circles, one of them tagged as boundary: its segments have patches on both
@@ -67,4 +68,7 @@ fn a_boundary_inside_the_surface_is_a_topology_error() {
     let Err(e) = find_patches(&g, &splines) else { panic!("accepted") };
     assert!(e.to_string().contains("is tagged as boundary but has patches on both sides"), "{e}");
     assert!(matches!(e, Error::Topology { .. }), "{e}");
+    let s = e.at().segment.unwrap();
+    assert!(g.segments[s].boundary);
+    assert_eq!(e.at().curve, Some(1));
 }

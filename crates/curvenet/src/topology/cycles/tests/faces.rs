@@ -82,3 +82,17 @@ fn three_great_circles_trace_eight_triangles() {
     assert!(c.lone_faces.iter().all(|f| f.is_empty()));
     check_boundary_sides(&g, &faces, &parts).unwrap();
 }
+
+/// The dangling end is data: the error names the node (an end of the first line), its
+/// segment and curve.
+#[test]
+fn a_dangling_segment_error_names_its_node() {
+    let (g, _, _) = plus();
+    let Err(e) = check_valence(&g, &node_ends(&g)) else { panic!("accepted") };
+    let at = e.at();
+    let (v, s) = (at.node.unwrap(), at.segment.unwrap());
+    assert_eq!(g.nodes[v].position, -DVec3::X);
+    assert!(g.segments[s].start == v || g.segments[s].end == v);
+    assert_eq!(at.curve, Some(g.segments[s].curve));
+    assert!(e.to_string().contains(&format!("ends at node {v} at")), "{e}");
+}

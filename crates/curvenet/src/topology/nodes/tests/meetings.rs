@@ -63,6 +63,8 @@ fn normals_more_than_90_degrees_apart_are_an_orientation_error() {
     let Err(e) = meeting_node(&lines, &p) else { panic!("accepted") };
     assert!(e.to_string().starts_with("curve 0 and curve 1 meet at"), "{e}");
     assert!(e.to_string().contains("180°"), "{e}");
+    assert_eq!(e.at().curve, Some(0));
+    assert_eq!(e.at().point, Some([0.0; 3]));
 }
 
 /// The polyline (0,0,0) – (1,0,0) – (1,1,0), arc lengths 0, 1, 2.
