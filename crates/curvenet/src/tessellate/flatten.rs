@@ -2,6 +2,8 @@
 //! coarse first solution is flattened by least squares conformal maps ([`super::conformal`]),
 //! and the patch is triangulated again in that flattening, its fine curve vertices placed on
 //! the flattened border by arc length.
+//!
+//! [CG]: crate
 
 use super::triangulate::{lift_patch, triangulate};
 use super::{describe_patch, loop_vertices, PatchMesh, VRef};
@@ -67,7 +69,8 @@ fn flatten_disk(hs: &[HalfEdge], coarse_res: &Resampled, coarse: &Mesh, faces: &
         super::conformal::lscm(&p3, &local_faces, [*local.get(&first)? as usize, *local.get(&far)? as usize]).ok()?;
     if local_faces.iter().any(|f| {
         let [a, b, c] = f.map(|v| uv[v as usize]);
-        !((b - a).perp_dot(c - a) > 0.0)
+        let counter_clockwise = (b - a).perp_dot(c - a) > 0.0; // false for NaN too
+        !counter_clockwise
     }) {
         return None;
     }

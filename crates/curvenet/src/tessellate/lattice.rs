@@ -112,7 +112,10 @@ pub(super) fn hex_lattice(poly: &[DVec2], d: f64) -> Lattice {
     }
     let ext = hi - lo;
     let empty = Lattice { points: Vec::new(), grid: Vec::new(), rows: 0, cols: 0 };
-    if !(ext.x > 2.0 * margin && ext.y > 2.0 * margin) || !(d > 0.0) || ext.x / d * ext.y / d > 4e8 {
+    // (Comparisons with NaN are false: no lattice then either.)
+    let wide = ext.x > 2.0 * margin && ext.y > 2.0 * margin;
+    let positive = d > 0.0;
+    if !wide || !positive || ext.x / d * ext.y / d > 4e8 {
         return empty;
     }
     let border = BorderGrid::new(poly, lo, ext, d);

@@ -24,6 +24,8 @@
 //! - `flatten.rs` and [`conformal`], conformal patching: each disk patch of a coarse first
 //!   solution flattened by least squares conformal maps, and triangulated in its flattening.
 //! - `merge.rs`: the patches merged into one mesh, the curve vertices first.
+//!
+//! [CG]: crate
 
 pub mod conformal;
 mod fallback;

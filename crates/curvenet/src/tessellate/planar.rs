@@ -4,6 +4,8 @@
 //! bounded by a great circle) or disagree with the cycle's orientation, the plane of the
 //! cycle's vector area is used instead. A projection that folds over goes to the fallback
 //! domains ([`super::fallback`]).
+//!
+//! [CG]: crate
 
 use super::triangulate::{lift_patch, triangulate};
 use super::{describe_patch, fallback, loop_vertices, PatchMesh, VRef};

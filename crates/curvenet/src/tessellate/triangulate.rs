@@ -30,7 +30,8 @@ pub(super) fn triangulate(pts: Vec<DVec2>, map: Vec<VRef>, d: f64, what: &dyn Fn
         return Err(Error::topology(format!("{}: a patch needs at least 3 boundary vertices", what())));
     }
     let area = polygon_signed_area(&pts);
-    if !(area > 0.0) {
+    let counter_clockwise = area > 0.0; // false for NaN too
+    if !counter_clockwise {
         return Err(Error::topology(format!(
             "{}: the cycle runs clockwise (or encloses no area) when projected on its plane; \
              the projection folds over or the normals disagree with the cycle",

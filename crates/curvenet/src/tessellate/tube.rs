@@ -4,6 +4,8 @@
 //! edge at the height of the distance between the loops' centroids, the seam vertices shared
 //! by the left and right edges. The strip is triangulated ([`super::triangulate`]) and lifted
 //! back to 3D by blending the two loops at the same relative abscissa.
+//!
+//! [CG]: crate
 
 use super::triangulate::{lift_patch, triangulate};
 use super::{describe_patch, loop_vertices, PatchMesh, VRef};

@@ -5,6 +5,8 @@
 //! closed curves that are not boundary curves and meet no other curve, and reports each curve
 //! it shortened or left out as a [`Warning`] naming the curve and where its kept part ends.
 //! The rest of the network is surfaced as usual.
+//!
+//! [CG]: crate
 
 use super::nodes::Graph;
 use crate::error::{Error, Result, Warning};

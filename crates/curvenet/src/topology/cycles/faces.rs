@@ -3,6 +3,8 @@
 //! manifold, sorted counter-clockwise around the node normal (a rotation system), the faces
 //! it traces, and their classification into patches, slits and the faces of lone boundary
 //! loops.
+//!
+//! [CG]: crate
 
 use super::{HalfEdge, Patch};
 use crate::curves::CurveSpline;
@@ -52,7 +54,7 @@ pub(super) fn check_valence(g: &Graph, ends: &NodeEnds) -> Result<()> {
     // A 2-manifold's border passes through a node once or not at all: 0 or 2 boundary ends.
     for (v, list) in ends.iter().enumerate() {
         let boundary: Vec<usize> = list.iter().filter(|(s, _)| g.segments[*s].boundary).map(|(s, _)| *s).collect();
-        if boundary.len() != 0 && boundary.len() != 2 {
+        if !boundary.is_empty() && boundary.len() != 2 {
             let mut names: Vec<&str> = boundary.iter().map(|&s| g.labels[g.segments[s].curve].as_str()).collect();
             names.dedup();
             return Err(Error::topology(format!(

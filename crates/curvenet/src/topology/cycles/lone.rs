@@ -4,6 +4,8 @@
 //! their centroids, and normals that run along that line) bound one tube ([CG] Fig. 1, two
 //! circles on a cylinder), nearest pairs first; any other lone loop bounds a disk, on the side
 //! its normals lean to.
+//!
+//! [CG]: crate
 
 use super::faces::{Faces, NodeEnds, Parts};
 use super::{half_edge_samples, HalfEdge, Patch};

@@ -17,6 +17,8 @@
 //!
 //! The stages: `faces.rs` checks the nodes, sorts the segment ends around them and traces and
 //! classifies the faces; `lone.rs` turns the lone boundary loops into tubes and disks.
+//!
+//! [CG]: crate
 
 mod faces;
 mod lone;
@@ -31,7 +33,9 @@ use lone::{lone_loops, lone_patches};
 /// A segment traversed in one direction: `forward` runs from its start node to its end node.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct HalfEdge {
+    /// Index of the segment in [`Graph::segments`].
     pub segment: usize,
+    /// Traversed from the segment's start node to its end node.
     pub forward: bool,
 }
 

@@ -4,8 +4,10 @@
 //! Curves meet where they share a sample *or* pass within the snapping tolerance of each other
 //! between samples (sensor data rarely sample a crossing exactly). Candidate pairs of polyline
 //! edges come from a uniform spatial hash grid (not all pairs); their closest points
-//! ([`closest_params_segment_segment`]) within the tolerance are hits. Hits closer than twice
-//! the tolerance form one node. The node is inserted into every curve passing through it
+//! ([`crate::geom::closest_params_segment_segment`]) within the tolerance are hits. Hits closer
+//! than twice the tolerance form one node, and so do hits of the same two curves within a few
+//! tolerances along both curves (a shallow meeting). Curves that stay within the tolerance of
+//! each other over a stretch are an overlap error. The node is inserted into every curve passing through it
 //! (snapping the nearest sample when it is within a quarter of an edge, inserting a new sample
 //! otherwise); its normal is the average of the normals the curves give there. Curves whose
 //! normals disagree by more than 90° at a node are an orientation error.
@@ -14,6 +16,8 @@
 //! them into meetings, `meetings.rs` turns each meeting into a node (with the overlap and
 //! orientation checks), `split.rs` adds the end nodes, inserts the nodes into the curves and
 //! cuts the curves into segments.
+//!
+//! [CG]: crate
 
 mod contacts;
 mod meetings;
@@ -30,6 +34,7 @@ use split::{add_end_nodes, segments_of, split_curve};
 /// A point where curves meet (or where an open curve ends).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Node {
+    /// Position (where curves meet: the mean of the points where they pass).
     pub position: DVec3,
     /// Unit normal: the average of the curves' normals at the node.
     pub normal: DVec3,
@@ -39,10 +44,15 @@ pub struct Node {
 /// that a node sits at sample 0.
 #[derive(Clone, Debug)]
 pub struct SplitCurve {
+    /// The input curve's name.
     pub name: Option<String>,
+    /// Samples, with the nodes inserted (a node's sample is at the node's position).
     pub points: Vec<DVec3>,
+    /// Normals at `points` (a node's sample has the node's normal).
     pub normals: Vec<DVec3>,
+    /// The last sample connects back to the first.
     pub closed: bool,
+    /// The curve bounds the surface.
     pub boundary: bool,
     /// `(sample index, node id)` for every node on the curve, by increasing sample index.
     pub nodes: Vec<(usize, usize)>,
@@ -53,12 +63,14 @@ pub struct SplitCurve {
 pub struct Segment {
     /// Index of the curve (in the input network and in [`Graph::curves`]).
     pub curve: usize,
-    /// First and last sample of the segment on its [`SplitCurve`]; `last` may equal the
-    /// number of samples of a closed curve (sample 0 again).
+    /// First sample of the segment on its [`SplitCurve`].
     pub first: usize,
+    /// Last sample of the segment; it may equal the number of samples of a closed curve
+    /// (sample 0 again).
     pub last: usize,
-    /// Nodes at the first and last sample.
+    /// Node at the first sample.
     pub start: usize,
+    /// Node at the last sample.
     pub end: usize,
     /// The segment lies on a boundary curve.
     pub boundary: bool,
@@ -67,8 +79,13 @@ pub struct Segment {
 /// Nodes, split curves and segments of a network.
 #[derive(Clone, Debug)]
 pub struct Graph {
+    /// The nodes: first those where curves meet, then, curve by curve, the ends of open curves
+    /// where they meet nothing and a node on each closed curve that meets no other curve
+    /// (renumbered when segments are left out, [`crate::topology::open::remove_segments`]).
     pub nodes: Vec<Node>,
+    /// The curves of the network, in input order, with the nodes inserted.
     pub curves: Vec<SplitCurve>,
+    /// The segments, curve by curve, in order along each curve.
     pub segments: Vec<Segment>,
     /// Names of the input curves, for messages.
     pub(crate) labels: Vec<String>,
@@ -108,6 +125,8 @@ impl Graph {
 /// `snap` is the snapping tolerance (a distance). Errors: curves that overlap (run within the
 /// tolerance of each other over a stretch longer than a few tolerances), and curves whose
 /// normals disagree in orientation at a node.
+///
+/// [CG]: crate
 pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
     let curves = &net.curves;
     let labels: Vec<String> = (0..curves.len()).map(|i| curve_label(curves, i)).collect();

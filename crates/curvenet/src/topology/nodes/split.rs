@@ -95,8 +95,8 @@ pub(super) fn split_curve(lines: &Polylines, c: usize, list: &mut [(f64, usize)]
     let mut normals = Vec::with_capacity(n + inserts.len());
     let mut markers = Vec::new();
     let mut k = 0;
-    for i in 0..n {
-        match snapped[i] {
+    for (i, &snap) in snapped.iter().enumerate() {
+        match snap {
             Some(node) => {
                 markers.push((points.len(), node));
                 points.push(nodes[node].position);
