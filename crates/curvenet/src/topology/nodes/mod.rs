@@ -122,9 +122,10 @@ impl Graph {
 
 /// Finds the nodes of a validated network and splits its curves into segments ([CG] §3.2).
 ///
-/// `snap` is the snapping tolerance (a distance). Errors: curves that overlap (run within the
-/// tolerance of each other over a stretch longer than a few tolerances), and curves whose
-/// normals disagree in orientation at a node.
+/// `snap` is the snapping tolerance (a distance). Errors ([`crate::Error::Input`], naming the
+/// curve and a point): curves that overlap (run within the tolerance of each other over a
+/// stretch longer than a few tolerances), curves whose normals disagree in orientation at a
+/// node, and two nodes that land on one point of a curve. The warnings are empty for now.
 ///
 /// [CG]: crate
 pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
