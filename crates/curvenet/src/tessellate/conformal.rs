@@ -10,11 +10,13 @@
 //! `Σ_T A_T ‖∇v − R∇u‖² = Σ_T (1/4A_T) ‖Σ_j (u_j e_j + v_j R e_j)‖²` with two vertices pinned.
 //! Cotangent weights are invariant under conformal maps, so a triangulation made in this
 //! domain carries weights close to those of the surface.
+//!
+//! [CG]: crate
 
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
-use crate::solve::Cholesky;
 use crate::solve::sparse::Csc;
+use crate::solve::Cholesky;
 use faer::Mat;
 
 /// LSCM parameterisation of a triangle mesh with disk topology (`faces` counter-clockwise).
@@ -43,7 +45,8 @@ pub fn lscm(positions: &[DVec3], faces: &[[u32; 3]], pins: [usize; 2]) -> Result
         let x = b - a;
         let normal = x.cross(c - a);
         let twice_area = normal.length();
-        if !(twice_area > 0.0) || !x.length_squared().is_normal() {
+        let has_area = twice_area > 0.0; // false for NaN too
+        if !has_area || !x.length_squared().is_normal() {
             continue; // a degenerate triangle carries no conformality information
         }
         let xh = x.normalize();
@@ -76,9 +79,9 @@ pub fn lscm(positions: &[DVec3], faces: &[[u32; 3]], pins: [usize; 2]) -> Result
                 }
             };
             let mut fixed = 0.0;
-            for s in 0..6 {
+            for (s, &(_, w)) in row.iter().enumerate() {
                 if unknown(s).is_none() {
-                    fixed += row[s].1 * value(s);
+                    fixed += w * value(s);
                 }
             }
             for s in 0..6 {

@@ -5,6 +5,8 @@
 //! closed curves that are not boundary curves and meet no other curve, and reports each curve
 //! it shortened or left out as a [`Warning`] naming the curve and where its kept part ends.
 //! The rest of the network is surfaced as usual.
+//!
+//! [CG]: crate
 
 use super::nodes::Graph;
 use crate::error::{Error, Result, Warning};
@@ -85,6 +87,7 @@ pub fn cover_detached_holes(g: &mut Graph, attached: &[bool]) -> Vec<Warning> {
                 g.labels[c],
                 fmt_point(at)
             ))
+            .curve(c)
         })
         .collect();
     remove_segments(g, &gone);
@@ -156,13 +159,18 @@ fn trim_dangling_only(g: &mut Graph) -> Result<Vec<Warning>> {
                 g.labels[c],
                 fmt_point(g.nodes[*v].position)
             )
-        }));
+        })
+        .curve(c));
     }
     if removed.iter().all(|&r| r) {
         return Err(Error::topology(format!(
             "no curves of the network bound a patch: every curve dangles or meets no other ({}). Curves must \
              cross each other (or end on each other) to enclose patches",
-            warnings.iter().map(|w| w.message.split(" (").next().unwrap_or("").to_string()).collect::<Vec<_>>().join(", ")
+            warnings
+                .iter()
+                .map(|w| w.message.split(" (").next().unwrap_or("").to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
         )));
     }
     let gone: Vec<usize> = (0..ns).filter(|&s| removed[s]).collect();
@@ -205,3 +213,7 @@ pub fn remove_segments(g: &mut Graph, remove: &[usize]) {
     g.nodes = nodes;
     g.segments = segments;
 }
+
+#[cfg(test)]
+#[path = "tests/open.rs"]
+mod tests;

@@ -1,0 +1,243 @@
+//! From clusters of contacts to nodes: each distinct passage of a curve through a cluster,
+//! checks that the curves there cross rather than overlap, and the node's position and normal
+//! (the averages over the passages), with the check that the curves' normals agree in
+//! orientation.
+
+use super::contacts::{Hit, Loc, Polylines};
+use super::{Node, OVERLAP_PROBE, SAME_MEETING};
+use crate::error::{Error, Result};
+use crate::geom::{fmt_point, DVec3};
+
+/// One passage of a curve through a meeting: `(curve, arc position, location)`.
+pub(super) type Passage = (usize, f64, Loc);
+
+/// Per curve: `(arc position, node id)` of the nodes on it, in no particular order.
+pub(super) type OnCurve = Vec<Vec<(f64, usize)>>;
+
+/// The nodes of the meetings `clusters` (lists of indices into `hits`), in cluster order, and
+/// where they lie on each curve.
+///
+/// Errors ([`Error::Input`]): curves that overlap ([`passages`], [`check_overlap`]), curves
+/// whose normals disagree in orientation ([`meeting_node`]).
+pub(super) fn meeting_nodes(
+    lines: &Polylines,
+    hits: &[Hit],
+    clusters: &[Vec<usize>],
+    snap: f64,
+) -> Result<(Vec<Node>, OnCurve)> {
+    // Each cluster becomes a node; each distinct passage of a curve through it a node sample.
+    let mut nodes: Vec<Node> = Vec::new();
+    // Per curve: (arc position, node id).
+    let mut on_curve: OnCurve = vec![Vec::new(); lines.curves.len()];
+    for cluster in clusters {
+        let passages = passages(lines, hits, cluster, snap)?;
+        check_overlap(lines, &passages, snap)?;
+        let node = meeting_node(lines, &passages)?;
+        let id = nodes.len();
+        nodes.push(node);
+        for p in &passages {
+            on_curve[p.0].push((p.1, id));
+        }
+    }
+    Ok((nodes, on_curve))
+}
+
+/// The passages of the curves through one meeting (the contacts `cluster` of `hits`): per
+/// curve, the runs of contact locations within [`SAME_MEETING`] tolerances of each other
+/// along the curve, each run represented by its middle location; runs of a closed curve on
+/// both sides of its seam are one. Sorted by curve and arc position.
+///
+/// Errors ([`Error::Input`]): a run longer than 8 tolerances (a curve that runs along another
+/// one, or along itself).
+pub(super) fn passages(lines: &Polylines, hits: &[Hit], cluster: &[usize], snap: f64) -> Result<Vec<Passage>> {
+    let labels = lines.labels;
+    let mut locs: Vec<(usize, f64, Loc)> = Vec::new();
+    for &k in cluster {
+        for l in [hits[k].a, hits[k].b] {
+            locs.push((l.curve, lines.arc_at(l), l));
+        }
+    }
+    locs.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    // Split into passages: runs of one curve whose arc positions are close.
+    let mut passages: Vec<(usize, f64, Loc)> = Vec::new();
+    let mut i = 0;
+    while i < locs.len() {
+        let mut j = i + 1;
+        while j < locs.len()
+            && locs[j].0 == locs[i].0
+            && lines.along(locs[i].0, locs[j].1, locs[j - 1].1) <= SAME_MEETING * snap
+        {
+            j += 1;
+        }
+        let c = locs[i].0;
+        let extent = lines.along(c, locs[j - 1].1, locs[i].1);
+        if extent > 8.0 * snap {
+            let others: Vec<&str> = locs.iter().filter(|l| l.0 != c).map(|l| labels[l.0].as_str()).collect();
+            let other = others.first().copied().unwrap_or("itself");
+            return Err(Error::input(format!(
+                "{} runs within the snapping tolerance ({snap:.3e}) of {other} for a length of {extent:.3e} near {}: \
+                 overlapping or coincident curves cannot be surfaced; remove the duplicate or lower `snap`",
+                labels[c],
+                fmt_point(lines.point_at(locs[i].2)),
+            ))
+            .curve(c)
+            .point(lines.point_at(locs[i].2)));
+        }
+        // The passage at the middle location of the run.
+        passages.push(locs[(i + j - 1) / 2]);
+        i = j;
+    }
+    // A closed curve's run may straddle its seam (arc 0 / length): merge first and last.
+    let mut merged: Vec<(usize, f64, Loc)> = Vec::new();
+    for p in passages {
+        if !merged.iter().any(|q| q.0 == p.0 && lines.along(p.0, p.1, q.1) <= SAME_MEETING * snap) {
+            merged.push(p);
+        }
+    }
+    Ok(merged)
+}
+
+/// Checks that the curves through a meeting separate away from it: curves that cross
+/// separate, curves that overlap stay within the tolerance. Each passage is probed a quarter,
+/// half and all of [`OVERLAP_PROBE`] tolerances along its curve on both sides; another
+/// passage's curve within `snap` of the probe points at all of them (near that passage) is an
+/// overlap.
+///
+/// Errors ([`Error::Input`]): an overlap, naming both curves.
+pub(super) fn check_overlap(lines: &Polylines, passages: &[Passage], snap: f64) -> Result<()> {
+    let (curves, arcs, labels) = (lines.curves, &lines.arcs, lines.labels);
+    // Curves that cross separate away from the node; curves that overlap stay within the
+    // tolerance. Probe each passage OVERLAP_PROBE tolerances along the curve on both sides.
+    let delta = OVERLAP_PROBE * snap;
+    for (a, pa) in passages.iter().enumerate() {
+        for (b, pb) in passages.iter().enumerate() {
+            if a == b {
+                continue;
+            }
+            for side in [-1.0, 1.0] {
+                // Overlapping curves stay together: within the tolerance at every probe
+                // (a quarter, half and all of OVERLAP_PROBE tolerances along). A curve
+                // that crosses again further on is close at one probe only.
+                let mut together = true;
+                let mut probed = false;
+                for frac in [0.25, 0.5, 1.0] {
+                    let Some(probe) = polyline_at_arc(
+                        &curves[pa.0].points,
+                        &arcs[pa.0],
+                        curves[pa.0].closed,
+                        pa.1 + side * frac * delta,
+                    ) else {
+                        break;
+                    };
+                    probed = true;
+                    let d = polyline_distance(
+                        &curves[pb.0].points,
+                        &arcs[pb.0],
+                        curves[pb.0].closed,
+                        pb.1,
+                        2.0 * frac * delta,
+                        probe,
+                    );
+                    if d > snap {
+                        together = false;
+                        break;
+                    }
+                }
+                if probed && together {
+                    return Err(Error::input(format!(
+                        "{} runs within the snapping tolerance ({snap:.3e}) of {} near {}: overlapping or coincident \
+                         curves (or curves touching at a very shallow angle) cannot be surfaced; remove the duplicate \
+                         or lower `snap`",
+                        labels[pa.0],
+                        if pa.0 == pb.0 { "itself".to_string() } else { labels[pb.0].clone() },
+                        fmt_point(lines.point_at(pa.2)),
+                    ))
+                    .curve(pa.0)
+                    .point(lines.point_at(pa.2)));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The node of a meeting: the mean position of the passages, and the normalised sum of the
+/// curves' normals there (the first curve's normal when they cancel out).
+///
+/// Errors ([`Error::Input`]): two passages whose normals are more than 90° apart (one of the
+/// curves has its normals pointing inward).
+pub(super) fn meeting_node(lines: &Polylines, passages: &[Passage]) -> Result<Node> {
+    let labels = lines.labels;
+    let position = passages.iter().map(|p| lines.point_at(p.2)).sum::<DVec3>() / passages.len() as f64;
+    let normals: Vec<DVec3> = passages.iter().map(|p| lines.normal_at(p.2)).collect();
+    for a in 0..normals.len() {
+        for b in a + 1..normals.len() {
+            let cos = normals[a].dot(normals[b]);
+            if cos < 0.0 {
+                return Err(Error::input(format!(
+                    "{} and {} meet at {} with normals {:.0}° apart: one of them points inward. \
+                     Normals must point to the outside of the surface on every curve; flip the normals of one curve",
+                    labels[passages[a].0],
+                    labels[passages[b].0],
+                    fmt_point(position),
+                    cos.clamp(-1.0, 1.0).acos().to_degrees()
+                ))
+                .curve(passages[a].0)
+                .point(position));
+            }
+        }
+    }
+    let normal = normals.iter().sum::<DVec3>().normalize_or_zero();
+    let normal = if normal == DVec3::ZERO { normals[0] } else { normal };
+    Ok(Node { position, normal })
+}
+
+/// Point of a polyline at arc length `s` (wrapping for closed curves); `None` past the ends of
+/// an open curve.
+pub(super) fn polyline_at_arc(points: &[DVec3], arc: &[f64], closed: bool, s: f64) -> Option<DVec3> {
+    let total = arc[arc.len() - 1];
+    let s = if closed {
+        s.rem_euclid(total)
+    } else if (0.0..=total).contains(&s) {
+        s
+    } else {
+        return None;
+    };
+    let e = (arc.partition_point(|&x| x <= s).max(1) - 1).min(arc.len() - 2);
+    let len = arc[e + 1] - arc[e];
+    let t = if len > 0.0 { (s - arc[e]) / len } else { 0.0 };
+    Some(points[e].lerp(points[(e + 1) % points.len()], t))
+}
+
+/// Distance from `p` to the part of a polyline within arc length `half` of `center`.
+pub(super) fn polyline_distance(points: &[DVec3], arc: &[f64], closed: bool, center: f64, half: f64, p: DVec3) -> f64 {
+    let total = arc[arc.len() - 1];
+    let m = arc.len() - 1;
+    let mut best = f64::INFINITY;
+    for e in 0..m {
+        // Arc distance from the window centre to this edge.
+        let (a0, a1) = (arc[e], arc[e + 1]);
+        let mut gap = if center < a0 {
+            a0 - center
+        } else if center > a1 {
+            center - a1
+        } else {
+            0.0
+        };
+        if closed {
+            gap = gap.min((a0 + total - center).abs().min((center + total - a1).abs()));
+        }
+        if gap > half {
+            continue;
+        }
+        let (q0, q1) = (points[e], points[(e + 1) % points.len()]);
+        let d = q1 - q0;
+        let t = if d.length_squared() > 0.0 { ((p - q0).dot(d) / d.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+        best = best.min(p.distance(q0 + t * d));
+    }
+    best
+}
+
+#[cfg(test)]
+#[path = "tests/meetings.rs"]
+mod tests;
