@@ -1,7 +1,140 @@
-//! Mesh checks and repairs: welding, cracks zipped, pinches split, vertex normals, edge keys.
+//! Stage 1, the mesh: the input checked ([`check_mesh`]) and repaired ([`Mesh::repaired`]):
+//! vertices at the same position welded, cracks zipped ([`zip_cracks`]), pinch vertices split
+//! ([`split_pinches`]); then its angle-weighted vertex normals ([`vertex_normals`]) and the
+//! faces around each edge, which must be at most two (a 2-manifold with boundary).
 
-use crate::geom::DVec3;
+use crate::error::{Error, Result};
+use crate::geom::{Aabb, DVec3};
 use std::collections::HashMap;
+
+/// The faces around each undirected edge ([`edge_key`]): one for a boundary edge, two inside.
+pub(super) type EdgeFaces = HashMap<(u32, u32), Vec<usize>>;
+
+/// The repaired mesh the curves are traced on.
+pub(super) struct Mesh {
+    /// Vertex positions (welded groups moved to their mean, split pinches appended).
+    pub(super) positions: Vec<DVec3>,
+    /// Triangles, counter-clockwise seen from outside, none degenerate in its indices.
+    pub(super) faces: Vec<[u32; 3]>,
+    /// Unit angle-weighted vertex normals ([`vertex_normals`]).
+    pub(super) normals: Vec<DVec3>,
+    /// The faces around each edge ([`EdgeFaces`]).
+    pub(super) edge_faces: EdgeFaces,
+}
+
+/// What [`Mesh::repaired`] changed, for the [`super::SampleReport`].
+pub(super) struct Repairs {
+    /// Boundary vertices welded across cracks ([`zip_cracks`]).
+    pub(super) zipped: usize,
+    /// Pinch vertices split ([`split_pinches`]).
+    pub(super) pinches: usize,
+}
+
+/// Checks the input mesh: faces, vertex indices in range, finite coordinates, non-zero extent.
+/// Returns the bounding box of the vertices used by the faces.
+///
+/// Errors: [`Error::Input`] naming the face or vertex at fault.
+pub(super) fn check_mesh(positions: &[DVec3], faces: &[[u32; 3]]) -> Result<Aabb> {
+    if faces.is_empty() {
+        return Err(Error::input("the mesh has no faces: there is nothing to sample"));
+    }
+    for (fi, f) in faces.iter().enumerate() {
+        for &v in f {
+            if v as usize >= positions.len() {
+                return Err(Error::input(format!(
+                    "face {fi} uses vertex {v} but the mesh has {} vertices",
+                    positions.len()
+                )));
+            }
+        }
+    }
+    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(Error::input(format!("mesh vertex {i} has a non-finite coordinate")).vertex(i));
+    }
+    let bbox = Aabb::of(faces.iter().flatten().map(|&v| positions[v as usize]));
+    let diag = bbox.diagonal();
+    if !(diag > 0.0 && diag.is_finite()) {
+        return Err(Error::input("the mesh has zero extent"));
+    }
+    Ok(bbox)
+}
+
+impl Mesh {
+    /// The checked input mesh repaired for tracing: vertices at the same position welded
+    /// (unwelded seams would read as boundary), faces that degenerate dropped, cracks narrower
+    /// than `near` zipped and pinch vertices split apart by `near` (see [`zip_cracks`],
+    /// [`split_pinches`]); with its vertex normals and edge adjacency.
+    ///
+    /// Errors: [`Error::Input`] for an edge shared by more than two faces (naming the edge).
+    pub(super) fn repaired(positions: &[DVec3], faces: &[[u32; 3]], near: f64) -> Result<(Mesh, Repairs)> {
+        let mut welded = weld(positions, faces);
+        let mut moved = positions.to_vec();
+        let zipped = zip_cracks(&mut moved, &mut welded, near);
+        let pinches = split_pinches(&mut moved, &mut welded, near);
+        let normals = vertex_normals(&moved, &welded);
+        let edge_faces = edge_faces(&welded);
+        check_manifold(&edge_faces, positions.len())?;
+        Ok((Mesh { positions: moved, faces: welded, normals, edge_faces }, Repairs { zipped, pinches }))
+    }
+
+    /// Whether `e` ([`edge_key`]) is an edge of one face only.
+    pub(super) fn is_boundary(&self, e: (u32, u32)) -> bool {
+        self.edge_faces.get(&e).is_some_and(|f| f.len() == 1)
+    }
+
+    /// The face across local edge `k` (`f[k]` → `f[k + 1]`) of face `fi`, if the edge has two.
+    pub(super) fn across(&self, fi: usize, k: usize) -> Option<usize> {
+        let f = self.faces[fi];
+        let e = edge_key(f[k], f[(k + 1) % 3]);
+        self.edge_faces.get(&e).and_then(|l| (l.len() == 2).then(|| if l[0] == fi { l[1] } else { l[0] }))
+    }
+}
+
+/// `faces` with each vertex replaced by the first vertex at the same position (`-0.0` and
+/// `0.0` alike), and the faces that degenerate (two corners the same) left out.
+fn weld(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<[u32; 3]> {
+    let mut first_at: HashMap<[u64; 3], u32> = HashMap::new();
+    let weld: Vec<u32> = positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let key = (*p + DVec3::ZERO).to_array().map(f64::to_bits);
+            *first_at.entry(key).or_insert(i as u32)
+        })
+        .collect();
+    faces.iter().map(|f| f.map(|v| weld[v as usize])).filter(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2]).collect()
+}
+
+/// The faces around each undirected edge of `faces`.
+fn edge_faces(faces: &[[u32; 3]]) -> EdgeFaces {
+    let mut edge_faces: EdgeFaces = HashMap::new();
+    for (fi, f) in faces.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            if a == b {
+                continue;
+            }
+            edge_faces.entry(edge_key(a, b)).or_default().push(fi);
+        }
+    }
+    edge_faces
+}
+
+/// An [`Error::Input`] if an edge has more than two faces, naming the edge (and its first
+/// vertex as the error's place when it is one of the `input_vertices` of the input mesh, not a
+/// copy made by [`split_pinches`]).
+fn check_manifold(edge_faces: &EdgeFaces, input_vertices: usize) -> Result<()> {
+    if let Some((e, fs)) = edge_faces.iter().find(|(_, fs)| fs.len() > 2) {
+        let err = Error::input(format!(
+            "the mesh is not a 2-manifold: edge between vertices {} and {} is shared by {} faces",
+            e.0,
+            e.1,
+            fs.len()
+        ));
+        return Err(if (e.0 as usize) < input_vertices { err.vertex(e.0 as usize) } else { err });
+    }
+    Ok(())
+}
 
 /// Angle-weighted vertex normals (each face's unit normal weighted by its corner angle), unit
 /// length; zero for a vertex of degenerate faces only.
@@ -24,6 +157,7 @@ pub fn vertex_normals(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<DVec3> {
     n.iter().map(|v| v.normalize_or_zero()).collect()
 }
 
+/// The key of the undirected edge between vertices `a` and `b`: the smaller index first.
 pub(super) fn edge_key(a: u32, b: u32) -> (u32, u32) {
     (a.min(b), a.max(b))
 }

@@ -1,7 +1,62 @@
-//! The output curves: resampling, hairpins.
+//! Stage 7, the network: each polyline kept is resampled at the sample spacing
+//! ([`resample`]: corners, ends and, with shared nodes, crossings kept as samples), hairpins
+//! are cut off ([`remove_hairpins`]), and the curves make the network
+//! ([`assemble`]), with the snapping tolerance written in it and sensor noise added
+//! ([`Network::perturbed`]).
 
-use super::Raw;
+use super::holes::Resampled;
+use super::{Raw, SampleOptions, SampleReport, Scales, Traced};
+use crate::error::{Error, Result};
 use crate::geom::DVec3;
+use crate::network::{Curve, Network};
+
+/// Turning angle (degrees) above which a polyline sample is a corner (a sharp edge of the
+/// mesh crossed by the section) and is kept through resampling: a chord across it would cut
+/// the corner and come close to the curves on the other side of the edge.
+pub const CORNER_DEG: f64 = 30.0;
+
+/// The network of the sections `pieces` and the boundary loops `loops` (already resampled),
+/// in that order: each resampled at `scales.spacing` (crossings kept as samples with
+/// `opts.shared_nodes`), hairpins closer than `scales.near` cut off, curves with too few
+/// samples left out; snapping tolerance `scales.snap`; with `opts.noise`, perturbed
+/// ([`Network::perturbed`] with `opts.seed`). Counts the curves and hairpins in `report`.
+///
+/// Errors: [`Error::Topology`] when no curve is left or `report` counts no crossing.
+pub(super) fn assemble(
+    pieces: Vec<Traced>,
+    loops: Vec<(Traced, Resampled)>,
+    opts: &SampleOptions,
+    scales: &Scales,
+    report: &mut SampleReport,
+) -> Result<Network> {
+    let mut curves = Vec::new();
+    let loops = loops.into_iter().map(|(t, pn)| (t, Some(pn)));
+    for (t, pn) in pieces.into_iter().map(|t| (t, None)).chain(loops) {
+        let (mut points, mut normals) =
+            pn.unwrap_or_else(|| resample(&t.samples, t.closed, scales.spacing, opts.shared_nodes));
+        report.hairpins += remove_hairpins(&mut points, &mut normals, t.closed, scales.near);
+        let need = if t.closed { 3 } else { 2 };
+        if points.len() < need {
+            continue;
+        }
+        if t.boundary {
+            report.boundary_loops += 1;
+        } else {
+            report.sections += 1;
+        }
+        curves.push(Curve { name: Some(t.name), points, normals, closed: t.closed, boundary: t.boundary });
+    }
+    if report.crossings == 0 || curves.is_empty() {
+        return Err(Error::topology(
+            "the plane sections do not cross each other on the mesh: give more planes (`planes`) in at least two directions",
+        ));
+    }
+    let mut net = Network { curves, snap: Some(scales.snap) };
+    if opts.noise > 0.0 {
+        net = net.perturbed(opts.noise, opts.seed);
+    }
+    Ok(net)
+}
 
 /// Resamples a polyline at about `spacing` by arc length (positions on the polyline, so on
 /// the mesh; normals interpolated linearly and normalised). Corner samples ([`corners`]), the
@@ -58,7 +113,7 @@ pub(super) fn resample(raw: &[Raw], closed: bool, spacing: f64, keep_nodes: bool
 
 /// Splits each stretch between two `fixed` samples evenly at about `spacing`; with `shift`
 /// (a closed curve with one stretch) the samples are moved by half a step.
-pub(super) fn finish(
+fn finish(
     pts: &[Raw],
     arc: &[f64],
     fixed: &[bool],
@@ -108,7 +163,7 @@ pub(super) fn finish(
 /// Corner samples of `pts` (open polyline; a closed one repeats its first sample at the end):
 /// the turning angle between the directions to the samples at least `reach` behind and ahead
 /// exceeds [`CORNER_DEG`]; of corners closer than `reach`, the sharpest is kept.
-pub(super) fn corners(pts: &[Raw], arc: &[f64], closed: bool, reach: f64) -> Vec<bool> {
+fn corners(pts: &[Raw], arc: &[f64], closed: bool, reach: f64) -> Vec<bool> {
     let m = pts.len();
     let total = arc[m - 1];
     let mut angle = vec![0.0; m];
@@ -160,11 +215,6 @@ pub(super) fn corners(pts: &[Raw], arc: &[f64], closed: bool, reach: f64) -> Vec
     }
     out
 }
-
-/// Turning angle (degrees) above which a polyline sample is a corner (a sharp edge of the
-/// mesh crossed by the section) and is kept through resampling: a chord across it would cut
-/// the corner and come close to the curves on the other side of the edge.
-pub const CORNER_DEG: f64 = 30.0;
 
 /// Cuts hairpins off a resampled curve: where the curve comes back within `tol` of itself
 /// after a few samples (a narrow notch of the mesh boundary, a thin fin cut by a plane), the

@@ -18,7 +18,11 @@
 //! Reference: S. Rusinkiewicz, *Estimating curvatures and their derivatives on triangle
 //! meshes*, 3DPVT 2004 (per-face fit of the second fundamental form).
 
-use super::{close_crossings, edge_key, near_misses, FaceCut, Raw, Traced, MIN_CROSSING_ANGLE_DEG};
+use super::crossings::{close_crossings, near_misses};
+use super::mesh::{edge_key, Mesh};
+use super::planes::{section_directions, MIN_CROSSING_ANGLE_DEG};
+use super::sections::FaceCut;
+use super::{Raw, SampleOptions, Scales, Traced, Traces, PRINCIPAL_SEPARATION};
 use crate::geom::{DVec2, DVec3};
 use std::collections::HashMap;
 
@@ -34,7 +38,7 @@ const PARALLEL_DEG: f64 = 35.0;
 
 /// What [`trace`] produced: the curves (crossings as node samples), the curve ends on boundary
 /// edges, the bad spots (curve index, place), and the number of crossings.
-pub(super) struct Principal {
+struct Principal {
     pub traced: Vec<Traced>,
     pub ends_on_boundary: HashMap<(u32, u32), Vec<Raw>>,
     pub spots: Vec<(usize, DVec3)>,
@@ -130,13 +134,48 @@ impl SegGrid {
     }
 }
 
+/// The principal curves of the mesh, [`PRINCIPAL_SEPARATION`] × the box's mean extent over
+/// the mean of the non-zero `opts.planes` counts apart, the field oriented by the third
+/// section direction ([`section_directions`] of `opts.tilt`) where the surface is isotropic.
+pub(super) fn trace_principal(mesh: &Mesh, opts: &SampleOptions, scales: &Scales) -> Traces {
+    // Curves along the principal directions, `separation` apart.
+    let ext = scales.bbox.max - scales.bbox.min;
+    let counts: Vec<f64> = opts.planes.iter().filter(|&&k| k > 0).map(|&k| k as f64).collect();
+    let mean_count = counts.iter().sum::<f64>() / counts.len().max(1) as f64;
+    let separation = PRINCIPAL_SEPARATION * (ext.x + ext.y + ext.z) / 3.0 / mean_count.max(1.0);
+    let axis = section_directions(opts.tilt)[2];
+    let r = trace(
+        &mesh.positions,
+        &mesh.faces,
+        &mesh.normals,
+        &mesh.edge_faces,
+        axis,
+        separation,
+        scales.spacing,
+        scales.near,
+        scales.gap,
+        scales.diag,
+    );
+    let mut bad: Vec<usize> = r.spots.iter().map(|x| x.0).collect();
+    bad.sort_unstable();
+    bad.dedup();
+    Traces {
+        traced: r.traced,
+        ends_on_boundary: r.ends_on_boundary,
+        unresolved: bad.len(),
+        spots: r.spots,
+        crossings: r.crossings,
+        trimmed: 0,
+    }
+}
+
 /// Traces curves along the principal directions on the mesh (see the module documentation),
 /// `separation` apart. `normals`: unit vertex normals; `axis`: the direction whose projection
 /// orients the field where the surface is isotropic; `spacing`, `near`, `gap`: as in
 /// [`super::sample_mesh`] (sample spacing, near-miss distance, smallest distance between
 /// crossings).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn trace(
+fn trace(
     positions: &[DVec3],
     faces: &[[u32; 3]],
     normals: &[DVec3],

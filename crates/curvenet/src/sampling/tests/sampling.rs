@@ -1,4 +1,6 @@
+use super::cut::cut_at_spots;
 use super::*;
+use crate::network::Curve;
 use std::f64::consts::PI;
 
 /// A UV sphere of radius 1 (`rings` latitude bands, `2 rings` longitudes), counter-clockwise
