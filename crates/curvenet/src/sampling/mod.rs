@@ -40,6 +40,7 @@ use crate::network::Network;
 use std::collections::HashMap;
 
 mod boundary;
+mod cross_field;
 mod crossings;
 mod cut;
 mod holes;
