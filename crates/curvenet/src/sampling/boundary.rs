@@ -4,7 +4,7 @@
 //! ([`Trimmer`]).
 
 use super::mesh::{edge_key, EdgeFaces, Mesh};
-use super::{Raw, Traced};
+use super::{EndsOnBoundary, Raw, Traced};
 use crate::geom::DVec3;
 use crate::topology::UnionFind;
 use std::collections::HashMap;
@@ -13,11 +13,7 @@ use std::collections::HashMap;
 /// vertices along each loop, the surface on its left, with the section ends recorded on its
 /// edges (`ends_on_boundary`) inserted as nodes in order along each edge; each adds one to
 /// `crossings`.
-pub(super) fn trace_boundary(
-    mesh: &Mesh,
-    ends_on_boundary: &HashMap<(u32, u32), Vec<Raw>>,
-    crossings: &mut usize,
-) -> Vec<Traced> {
+pub(super) fn trace_boundary(mesh: &Mesh, ends_on_boundary: &EndsOnBoundary, crossings: &mut usize) -> Vec<Traced> {
     let mut next_of = boundary_successors(mesh);
     let mut starts: Vec<u32> = next_of.keys().copied().collect();
     starts.sort_unstable();
@@ -56,9 +52,7 @@ fn boundary_successors(mesh: &Mesh) -> HashMap<u32, Vec<u32>> {
 fn walk_loop(next_of: &mut HashMap<u32, Vec<u32>>, s: u32) -> Vec<u32> {
     let mut verts = vec![s];
     let mut v = s;
-    loop {
-        let Some(list) = next_of.get_mut(&v) else { break };
-        let Some(w) = list.pop() else { break };
+    while let Some(w) = next_of.get_mut(&v).and_then(|list| list.pop()) {
         if w == s {
             break;
         }
@@ -71,12 +65,7 @@ fn walk_loop(next_of: &mut HashMap<u32, Vec<u32>>, s: u32) -> Vec<u32> {
 /// The samples of the closed loop through `verts`: each vertex (with its normal), then the
 /// section ends on the edge to the next vertex, ordered along it, as nodes (counted in
 /// `crossings`).
-fn loop_samples(
-    mesh: &Mesh,
-    verts: &[u32],
-    ends_on_boundary: &HashMap<(u32, u32), Vec<Raw>>,
-    crossings: &mut usize,
-) -> Vec<Raw> {
+fn loop_samples(mesh: &Mesh, verts: &[u32], ends_on_boundary: &EndsOnBoundary, crossings: &mut usize) -> Vec<Raw> {
     let (positions, normals) = (&mesh.positions, &mesh.normals);
     let m = verts.len();
     let mut samples = Vec::new();
@@ -230,3 +219,7 @@ impl Trimmer {
         Some(e)
     }
 }
+
+#[cfg(test)]
+#[path = "tests/boundary.rs"]
+mod tests;

@@ -175,3 +175,7 @@ fn adjacency(mesh: &Mesh, frames: &[Frame], good: &[bool]) -> Vec<Vec<(usize, DV
     }
     adj
 }
+
+#[cfg(test)]
+#[path = "tests/cross_field.rs"]
+mod tests;

@@ -239,3 +239,7 @@ pub(super) fn close_crossings(
     }
     out
 }
+
+#[cfg(test)]
+#[path = "tests/crossings.rs"]
+mod tests;

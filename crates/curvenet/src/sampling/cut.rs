@@ -235,3 +235,7 @@ pub(super) fn sharp_turns(pts: &[Raw], closed: bool, reach: f64, limit_deg: f64)
         .map(|i| pts[i].p)
         .collect()
 }
+
+#[cfg(test)]
+#[path = "tests/cut.rs"]
+mod tests;

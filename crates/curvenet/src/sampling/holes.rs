@@ -170,3 +170,7 @@ fn cut_back(pieces: Vec<Traced>, cut_ends: Vec<Vec<DVec3>>) -> Vec<Traced> {
     }
     out
 }
+
+#[cfg(test)]
+#[path = "tests/holes.rs"]
+mod tests;

@@ -205,13 +205,16 @@ struct Traced {
     cut: bool,
 }
 
+/// Polyline ends on boundary edges: edge ([`mesh::edge_key`]) → the end samples on it.
+type EndsOnBoundary = HashMap<(u32, u32), Vec<Raw>>;
+
 /// The curves traced on the mesh by [`sections::trace_sections`] or
 /// [`principal::trace_principal`], before the boundary loops.
 struct Traces {
     /// The polylines, crossings as node samples.
     traced: Vec<Traced>,
-    /// The polyline ends on boundary edges: edge ([`mesh::edge_key`]) → end samples.
-    ends_on_boundary: HashMap<(u32, u32), Vec<Raw>>,
+    /// The polyline ends on boundary edges.
+    ends_on_boundary: EndsOnBoundary,
     /// The number of planes (curves) still in a bad spot.
     unresolved: usize,
     /// The bad spots left: (plane or curve, place).

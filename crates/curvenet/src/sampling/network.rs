@@ -262,3 +262,7 @@ pub fn remove_hairpins(points: &mut Vec<DVec3>, normals: &mut Vec<DVec3>, closed
     }
     cut
 }
+
+#[cfg(test)]
+#[path = "tests/network.rs"]
+mod tests;

@@ -82,7 +82,8 @@ impl Planes {
             levels.sort_by(f64::total_cmp);
             let (lo, hi) = (levels[0], levels[levels.len() - 1]);
             let ext = hi - lo;
-            if k == 0 || !(ext > 1e-9 * diag) {
+            // Also skipped: a NaN extent.
+            if k == 0 || ext.partial_cmp(&(1e-9 * diag)) != Some(std::cmp::Ordering::Greater) {
                 continue;
             }
             let slab = ext / k as f64;
@@ -160,3 +161,7 @@ pub(super) fn place_planes(mesh: &Mesh, planes: &mut Planes, boundary: bool, sca
         planes.move_planes(bad, &mut rng);
     }
 }
+
+#[cfg(test)]
+#[path = "tests/planes.rs"]
+mod tests;

@@ -26,7 +26,7 @@ use super::crossings::{close_crossings, near_misses, CrossingPoints};
 use super::mesh::{edge_key, Mesh};
 use super::planes::{section_directions, MIN_CROSSING_ANGLE_DEG};
 use super::sections::FaceCut;
-use super::{Raw, SampleOptions, Scales, Traced, Traces, PRINCIPAL_SEPARATION};
+use super::{EndsOnBoundary, Raw, SampleOptions, Scales, Traced, Traces, PRINCIPAL_SEPARATION};
 use crate::geom::{DVec2, DVec3};
 use std::collections::HashMap;
 
@@ -40,14 +40,19 @@ const PARALLEL_DEG: f64 = 35.0;
 /// interpolated) or inside a face (the seed: the face's vertex normals interpolated).
 #[derive(Clone, Copy)]
 struct Pt {
+    /// Position.
     p: DVec3,
+    /// Normal (not normalised).
     n: DVec3,
 }
 
 /// A traced curve: points, the face of each segment (`faces[k]` holds `pts[k]..pts[k+1]`).
 struct Line {
+    /// The points (a closed curve does not repeat its first one).
     pts: Vec<Pt>,
+    /// The face of each segment.
     faces: Vec<usize>,
+    /// A closed loop (its last segment back to the first point).
     closed: bool,
     /// Boundary edges the curve ends on (first end, last end).
     ends: [Option<(u32, u32)>; 2],
@@ -55,7 +60,9 @@ struct Line {
 
 /// One way of a curve from its seed ([`Tracer::trace_one`]).
 struct Half {
+    /// The points from the seed on.
     pts: Vec<Pt>,
+    /// The face of each segment.
     faces: Vec<usize>,
     /// The boundary edge it ended on.
     boundary: Option<(u32, u32)>,
@@ -63,13 +70,19 @@ struct Half {
     closed: bool,
 }
 
+/// A segment in a [`SegGrid`]: (curve, start, end, arc position).
+type GridSeg = (usize, DVec3, DVec3, f64);
+
 /// Segments of the traced curves in a uniform grid (for the stop and seed tests).
 struct SegGrid {
+    /// The cell size.
     h: f64,
-    cells: HashMap<(i64, i64, i64), Vec<(usize, DVec3, DVec3, f64)>>,
+    /// The segments passing through each cell.
+    cells: HashMap<(i64, i64, i64), Vec<GridSeg>>,
 }
 
 impl SegGrid {
+    /// The cell of point `p`.
     fn cell(&self, p: DVec3) -> (i64, i64, i64) {
         ((p.x / self.h).floor() as i64, (p.y / self.h).floor() as i64, (p.z / self.h).floor() as i64)
     }
@@ -156,7 +169,9 @@ pub(super) fn trace_principal(mesh: &Mesh, opts: &SampleOptions, scales: &Scales
 
 /// Traces the streamlines of a cross field on a mesh, keeping them apart.
 struct Tracer<'a> {
+    /// The mesh traced on.
     mesh: &'a Mesh,
+    /// The field followed.
     field: &'a CrossField,
     /// The segments traced so far.
     grid: SegGrid,
@@ -440,15 +455,11 @@ fn cross_lines(mesh: &Mesh, frames: &[Frame], lines: &[Line]) -> LineCrossings {
 /// boundary edges: nodes, recorded per edge and as crossings with the boundary pseudo-curve
 /// `lines.len()` in `x.points`; an end at an angle below [`MIN_CROSSING_ANGLE_DEG`] to its
 /// edge is a bad spot.
-fn polylines(
-    mesh: &Mesh,
-    lines: &[Line],
-    x: &mut LineCrossings,
-) -> (Vec<Traced>, Vec<FaceCut>, HashMap<(u32, u32), Vec<Raw>>) {
+fn polylines(mesh: &Mesh, lines: &[Line], x: &mut LineCrossings) -> (Vec<Traced>, Vec<FaceCut>, EndsOnBoundary) {
     let (positions, faces) = (&mesh.positions, &mesh.faces);
     let boundary_id = lines.len();
     let cos_min = MIN_CROSSING_ANGLE_DEG.to_radians().cos();
-    let mut ends_on_boundary: HashMap<(u32, u32), Vec<Raw>> = HashMap::new();
+    let mut ends_on_boundary: EndsOnBoundary = HashMap::new();
     let mut cuts: Vec<FaceCut> = Vec::new();
     let mut traced = Vec::new();
     for (li, l) in lines.iter().enumerate() {
@@ -502,3 +513,7 @@ fn line_samples(l: &Line, mut ins: Vec<(usize, f64, Raw)>) -> Vec<Raw> {
     }
     samples
 }
+
+#[cfg(test)]
+#[path = "tests/principal.rs"]
+mod tests;

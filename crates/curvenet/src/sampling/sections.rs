@@ -8,7 +8,7 @@ use super::boundary::Trimmer;
 use super::crossings::Crossings;
 use super::mesh::{edge_key, Mesh};
 use super::planes::{place_planes, Planes};
-use super::{Raw, SampleOptions, Scales, Traced, Traces};
+use super::{EndsOnBoundary, Raw, SampleOptions, Scales, Traced, Traces};
 use crate::geom::DVec3;
 use std::collections::HashMap;
 
@@ -104,22 +104,31 @@ pub(super) fn trace_sections(mesh: &Mesh, opts: &SampleOptions, scales: &Scales)
 /// Chains the face cuts of the planes into polylines; collects the polylines, their ends on
 /// boundary edges and the number of ends trimmed.
 struct Chainer<'a> {
+    /// The mesh cut.
     mesh: &'a Mesh,
+    /// The planes where they were left.
     planes: &'a Planes,
+    /// Their face cuts.
     cuts: &'a [FaceCut],
+    /// The crossings on the cuts.
     crossings: &'a Crossings,
     /// Whether the boundary loops are kept (ends are trimmed and recorded).
     boundary: bool,
+    /// Cuts back ends that run along the boundary.
     trimmer: Trimmer,
+    /// The polylines chained so far.
     traced: Vec<Traced>,
-    /// Section end points on boundary edges, for the boundary loops: edge → samples.
-    ends_on_boundary: HashMap<(u32, u32), Vec<Raw>>,
+    /// Section end points on boundary edges, for the boundary loops.
+    ends_on_boundary: EndsOnBoundary,
+    /// The number of ends cut back.
     trimmed: usize,
 }
 
 /// A polyline of one plane walked through its cuts ([`Chainer::walk`]).
 struct Walk {
+    /// The samples: entry points and crossings.
     samples: Vec<Raw>,
+    /// Back at the first cut.
     closed: bool,
     /// The edge the walk left the last cut through (an open polyline's last end).
     last_edge: (u32, u32),
@@ -225,15 +234,15 @@ impl Chainer<'_> {
         // Ends on boundary edges meet the boundary loops there. An end that runs along
         // the boundary first is cut back to where it leaves it.
         if self.boundary {
-            for side in 0..2 {
-                if !self.mesh.is_boundary(end_edges[side]) {
+            for (side, end) in end_edges.iter_mut().enumerate() {
+                if !self.mesh.is_boundary(*end) {
                     continue;
                 }
                 if side == 1 {
                     samples.reverse();
                 }
-                if let Some(e) = self.trimmer.trim_start(self.mesh, samples, end_edges[side]) {
-                    end_edges[side] = e;
+                if let Some(e) = self.trimmer.trim_start(self.mesh, samples, *end) {
+                    *end = e;
                     self.trimmed += 1;
                 }
                 if side == 1 {
@@ -252,3 +261,7 @@ impl Chainer<'_> {
         true
     }
 }
+
+#[cfg(test)]
+#[path = "tests/sections.rs"]
+mod tests;
