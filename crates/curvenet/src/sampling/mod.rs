@@ -25,8 +25,8 @@
 //!    along the boundary cut back.
 //! 3. `crossings`: the exact crossings between sections on the triangles, and the bad spots
 //!    (shallow crossings, near misses, crossings close together) that move the planes.
-//!    Instead of 2–3, [`principal`]: streamlines of a cross field of principal directions,
-//!    with their crossings.
+//!    Instead of 2–3, `cross_field`, `streamlines` and [`principal`]: streamlines of a cross
+//!    field of principal directions, with their crossings.
 //! 4. `boundary`: the boundary loops with the section ends on them as nodes.
 //! 5. `cut`: sections cut at the bad spots left, at sharp turns and at crowded ends; sections
 //!    that meet no other curve dropped.
@@ -49,6 +49,7 @@ mod network;
 mod planes;
 pub mod principal;
 mod sections;
+mod streamlines;
 
 pub use cut::SHARP_TURN_DEG;
 use mesh::Mesh;

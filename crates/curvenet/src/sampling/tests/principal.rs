@@ -1,22 +1,6 @@
 use super::*;
 use crate::sampling::cross_field::CrossField;
-
-#[test]
-fn a_ray_leaves_a_triangle_through_the_first_edge_it_meets() {
-    let q = [DVec2::ZERO, DVec2::X, DVec2::Y];
-    // From (0.25, 0.25) along +x: through edge 1 ((1, 0) → (0, 1)) at (0.75, 0.25).
-    let (t, k, s) = exit_edge(DVec2::new(0.25, 0.25), DVec2::X, q, None).unwrap();
-    assert_eq!(k, 1);
-    assert!((t - 0.5).abs() < 1e-15 && (s - 0.25).abs() < 1e-15, "{t} {s}");
-    // Along −x: through edge 2 ((0, 1) → (0, 0)) at (0, 0.25), three quarters along it.
-    let (t, k, s) = exit_edge(DVec2::new(0.25, 0.25), -DVec2::X, q, None).unwrap();
-    assert!(k == 2 && (t - 0.25).abs() < 1e-15 && (s - 0.75).abs() < 1e-15);
-    // Entered through edge 1 and heading back out of it: no other exit.
-    assert!(exit_edge(DVec2::new(0.25, 0.25), DVec2::X, q, Some(1)).is_none());
-    // Through a corner: kept off the edge's end.
-    let (_, _, s) = exit_edge(DVec2::new(0.25, 0.0), DVec2::new(-0.25, 1.0), q, Some(0)).unwrap();
-    assert!(s == 1e-7 || s == 1.0 - 1e-7, "{s}");
-}
+use crate::sampling::streamlines::Pt;
 
 /// The square `[0, 1]²` as two triangles.
 fn square() -> Mesh {
