@@ -15,13 +15,47 @@
 //! Sections that meet no other curve (a small closed loop around a bump that no other plane
 //! crosses) and boundary loops that no section reaches cannot bound patches of the network;
 //! they are left out and counted in [`SampleReport`].
+//!
+//! The stages, one file each, in the order of the data:
+//!
+//! 1. `mesh`: the input checked and repaired (welded, cracks zipped, pinches split), vertex
+//!    normals and edge adjacency.
+//! 2. `planes`, `sections`: the section planes placed away from vertices and moved off bad
+//!    crossings; each face cut by each plane, the cuts chained into polylines, ends that run
+//!    along the boundary cut back.
+//! 3. `crossings`: the exact crossings between sections on the triangles, and the bad spots
+//!    (shallow crossings, near misses, crossings close together) that move the planes.
+//!    Instead of 2–3, `cross_field`, `streamlines` and [`principal`]: streamlines of a cross
+//!    field of principal directions, with their crossings.
+//! 4. `boundary`: the boundary loops with the section ends on them as nodes.
+//! 5. `cut`: sections cut at the bad spots left, at sharp turns and at crowded ends; sections
+//!    that meet no other curve dropped.
+//! 6. `holes`: small holes and holes that fewer than two sections reach covered, unsupported
+//!    section ends cut back to their last crossing.
+//! 7. `network`: the curves resampled, hairpins cut off, the network assembled, noise added.
 
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec3};
-use crate::network::{Curve, Network};
+use crate::network::Network;
 use std::collections::HashMap;
 
+mod boundary;
+mod cross_field;
+mod crossings;
+mod cut;
+mod holes;
+mod mesh;
+mod network;
+mod planes;
 pub mod principal;
+mod sections;
+mod streamlines;
+
+pub use cut::SHARP_TURN_DEG;
+use mesh::Mesh;
+pub use mesh::{split_pinches, vertex_normals, zip_cracks};
+pub use network::{remove_hairpins, CORNER_DEG};
+pub use planes::{section_directions, MAX_PLANE_MOVES, MIN_CROSSING_ANGLE_DEG};
 
 /// Distance between the principal curves ([`CurveFamily::Principal`]) as a fraction of the
 /// distance between the section planes for the same `planes` counts: two families instead of
@@ -148,147 +182,108 @@ pub struct SampleReport {
 /// (a node of the network, kept through resampling).
 #[derive(Clone, Copy, Debug)]
 struct Raw {
+    /// Position on the mesh.
     p: DVec3,
+    /// Normal interpolated from the vertex normals (not normalised).
     n: DVec3,
+    /// A crossing or a section end on the boundary: a node of the network.
     node: bool,
 }
 
 /// A polyline traced on the mesh.
 struct Traced {
-    /// The section plane (none for boundary loops).
+    /// The section plane or principal curve (none for boundary loops).
     plane: Option<usize>,
+    /// The samples in order (a closed polyline does not repeat its first one).
     samples: Vec<Raw>,
+    /// A closed loop.
     closed: bool,
+    /// A boundary loop of the mesh.
     boundary: bool,
+    /// The curve's name in the network.
     name: String,
-    /// A piece of a section cut at a bad spot ([`cut_at_spots`]): it may end at crossings.
+    /// A piece of a section cut at a bad spot ([`cut::cut_at_spots`]): it may end at crossings.
     cut: bool,
 }
 
-/// Angle-weighted vertex normals (each face's unit normal weighted by its corner angle), unit
-/// length; zero for a vertex of degenerate faces only.
-pub fn vertex_normals(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<DVec3> {
-    let mut n = vec![DVec3::ZERO; positions.len()];
-    for f in faces {
-        let p = f.map(|i| positions[i as usize]);
-        let fnrm = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
-        if fnrm == DVec3::ZERO {
-            continue;
-        }
-        for k in 0..3 {
-            let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
-            let angle = a.angle_between(b);
-            if angle.is_finite() {
-                n[f[k] as usize] += angle * fnrm;
-            }
-        }
-    }
-    n.iter().map(|v| v.normalize_or_zero()).collect()
+/// Polyline ends on boundary edges: edge ([`mesh::edge_key`]) → the end samples on it.
+type EndsOnBoundary = HashMap<(u32, u32), Vec<Raw>>;
+
+/// The curves traced on the mesh by [`sections::trace_sections`] or
+/// [`principal::trace_principal`], before the boundary loops.
+struct Traces {
+    /// The polylines, crossings as node samples.
+    traced: Vec<Traced>,
+    /// The polyline ends on boundary edges.
+    ends_on_boundary: EndsOnBoundary,
+    /// The number of planes (curves) still in a bad spot.
+    unresolved: usize,
+    /// The bad spots left: (plane or curve, place).
+    spots: Vec<(usize, DVec3)>,
+    /// The number of crossings.
+    crossings: usize,
+    /// The number of ends cut back along the boundary.
+    trimmed: usize,
 }
 
-/// The level near `nominal` (within `± window`) farthest from every vertex level: the middle of
-/// the widest gap between the sorted vertex coordinates `levels` in the window. A plane there
-/// passes through no vertex, and stays away from flat faces perpendicular to its axis (CAD
-/// models): a section just beside such a face would run alongside the sections that cross it.
-fn plane_level(levels: &[f64], nominal: f64, window: f64) -> f64 {
-    let (a, b) = (nominal - window, nominal + window);
-    let first = levels.partition_point(|&x| x < a);
-    let last = levels.partition_point(|&x| x <= b);
-    let mut cuts = vec![a];
-    cuts.extend_from_slice(&levels[first..last]);
-    cuts.push(b);
-    let mut best = (f64::NEG_INFINITY, nominal);
-    for w in cuts.windows(2) {
-        // Prefer wide gaps, then gaps near the nominal level.
-        let mid = 0.5 * (w[0] + w[1]);
-        let score = (w[1] - w[0]) - 1e-3 * (mid - nominal).abs();
-        if score > best.0 {
-            best = (score, mid);
-        }
-    }
-    best.1
-}
-
-/// The normals of the three section families: the coordinate axes turned by `tilt_deg` about
-/// (1, 2, 3)/√14 (an axis along no symmetry of the cube, so that no turned axis is parallel to a
-/// coordinate plane for small angles).
-pub fn section_directions(tilt_deg: f64) -> [DVec3; 3] {
-    let q = glam::DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), tilt_deg.to_radians());
-    [q * DVec3::X, q * DVec3::Y, q * DVec3::Z]
-}
-
-/// Crossings at a smaller angle than this (between the two cut directions on a triangle)
-/// move one of the planes: such curves run alongside each other over a long stretch.
-pub const MIN_CROSSING_ANGLE_DEG: f64 = 18.0;
-/// How many times [`sample_mesh`] moves planes off shallow crossings before it keeps them.
-pub const MAX_PLANE_MOVES: usize = 24;
-
-/// Planes whose sections come within `near` of a section of another plane away from their
-/// crossings (near-misses: the pipeline would snap them into a node that is no crossing). Of
-/// each such pair, the plane with the larger index below `first_virtual` is returned (planes
-/// from `first_virtual` on stand for the mesh boundary and are not moved).
-fn near_misses(
-    cuts: &[FaceCut],
-    crossing_points: &HashMap<(usize, usize), Vec<DVec3>>,
+/// The sizes the stages share.
+struct Scales {
+    /// The bounding box of the input mesh.
+    bbox: Aabb,
+    /// Its diagonal.
+    diag: f64,
+    /// The sample spacing.
+    spacing: f64,
+    /// The network's snapping tolerance: the crossings fall between samples by the chord sag
+    /// and the noise, a few percent of the spacing each ([`SampleOptions::SNAP_SPACING`]).
+    snap: f64,
+    /// Sections of two planes closer than this away from their crossings would be snapped
+    /// together by the pipeline: twice the snapping tolerance.
     near: f64,
-    first_virtual: usize,
-) -> Vec<(usize, DVec3)> {
-    use crate::geom::closest_params_segment_segment;
-    let h = near.max(f64::MIN_POSITIVE);
-    let cell = |p: DVec3| ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
-    let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
-    for (i, c) in cuts.iter().enumerate() {
-        let lo = cell(c.ends[0].min(c.ends[1]) - DVec3::splat(near));
-        let hi = cell(c.ends[0].max(c.ends[1]) + DVec3::splat(near));
-        if (hi.0 - lo.0 + 1) * (hi.1 - lo.1 + 1) * (hi.2 - lo.2 + 1) > 4096 {
-            continue; // a cut far longer than the tolerance (coarse mesh): checked from its neighbours
-        }
-        for x in lo.0..=hi.0 {
-            for y in lo.1..=hi.1 {
-                for z in lo.2..=hi.2 {
-                    grid.entry((x, y, z)).or_default().push(i);
-                }
-            }
-        }
-    }
-    let mut seen = std::collections::HashSet::new();
-    let mut out = Vec::new();
-    for list in grid.values() {
-        for (k, &i) in list.iter().enumerate() {
-            for &j in &list[k + 1..] {
-                let (a, b) = (&cuts[i], &cuts[j]);
-                if a.plane == b.plane || !seen.insert((i.min(j), i.max(j))) {
-                    continue;
-                }
-                let (s, t) = closest_params_segment_segment(a.ends[0], a.ends[1], b.ends[0], b.ends[1]);
-                let (pa, pb) = (a.ends[0].lerp(a.ends[1], s), b.ends[0].lerp(b.ends[1], t));
-                if pa.distance(pb) > near {
-                    continue;
-                }
-                let key = (a.plane.min(b.plane), a.plane.max(b.plane));
-                let m = 0.5 * (pa + pb);
-                let at_crossing =
-                    crossing_points.get(&key).is_some_and(|ps| ps.iter().any(|p| p.distance(m) <= 4.0 * near));
-                if !at_crossing {
-                    out.push((if key.1 >= first_virtual { key.0 } else { key.1 }, m));
-                }
-            }
-        }
-    }
-    out
+    /// Crossings closer than this are moved apart: one sample spacing, and well beyond the
+    /// pipeline's node clustering (twice `near`). Two crossings of the same two sections: the
+    /// same.
+    gap: f64,
 }
 
-fn edge_key(a: u32, b: u32) -> (u32, u32) {
-    (a.min(b), a.max(b))
+impl Scales {
+    /// The sizes for a mesh with box `bbox` and the options `opts`.
+    ///
+    /// Errors: [`Error::Usage`] for a spacing that is not a positive distance or below 1e-6 of
+    /// the box diagonal.
+    fn new(bbox: Aabb, opts: &SampleOptions) -> Result<Scales> {
+        let diag = bbox.diagonal();
+        let spacing = opts.spacing.unwrap_or(SampleOptions::DEFAULT_SPACING_RELATIVE * diag);
+        if !(spacing.is_finite() && spacing > 0.0) {
+            return Err(Error::usage(format!("sample spacing (`spacing`) {spacing} is not a positive distance")));
+        }
+        if spacing * 1e6 < diag {
+            return Err(Error::usage(format!(
+                "sample spacing (`spacing`) {spacing} is below 1e-6 of the mesh's size {diag:.4e}; the network would be too large"
+            )));
+        }
+        let snap = SampleOptions::SNAP_SPACING * spacing;
+        let near = 2.0 * snap;
+        let gap = spacing.max(2.0 * near);
+        Ok(Scales { bbox, diag, spacing, snap, near, gap })
+    }
 }
 
-/// One plane section segment inside a face: it enters/leaves through edges `edges[0]`,
-/// `edges[1]` at points `ends[0]`, `ends[1]`.
-#[derive(Clone, Copy)]
-struct FaceCut {
-    plane: usize,
-    edges: [(u32, u32); 2],
-    ends: [DVec3; 2],
+/// Checks the options other than the spacing: some planes, a finite tilt, a non-negative
+/// noise.
+///
+/// Errors: [`Error::Usage`] naming the option.
+fn check_options(opts: &SampleOptions) -> Result<()> {
+    if opts.planes.iter().sum::<usize>() == 0 {
+        return Err(Error::usage("no section planes: give at least one plane count (`planes`) above 0"));
+    }
+    if !opts.tilt.is_finite() {
+        return Err(Error::usage(format!("`tilt` {} is not a finite angle", opts.tilt)));
+    }
+    if !(opts.noise.is_finite() && opts.noise >= 0.0) {
+        return Err(Error::usage(format!("`noise` {} is not a non-negative number", opts.noise)));
+    }
+    Ok(())
 }
 
 /// Samples a curve network on a triangle mesh (see the module documentation).
@@ -298,1341 +293,40 @@ struct FaceCut {
 ///
 /// Errors: [`Error::Input`] for a mesh without faces, a face index out of range, a non-finite
 /// coordinate, an edge shared by more than two faces (naming the edge), a mesh with zero
-/// extent; [`Error::usage`] for a spacing that is not a positive distance, or no planes;
-/// [`Error::Topology`] when the sections give no crossing at all.
+/// extent; [`Error::Usage`] for a spacing that is not a positive distance, no planes, a tilt
+/// that is not finite, a negative noise; [`Error::Topology`] when the sections give no
+/// crossing at all.
 pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions) -> Result<(Network, SampleReport)> {
-    if faces.is_empty() {
-        return Err(Error::input("the mesh has no faces: there is nothing to sample"));
-    }
-    for (fi, f) in faces.iter().enumerate() {
-        for &v in f {
-            if v as usize >= positions.len() {
-                return Err(Error::input(format!(
-                    "face {fi} uses vertex {v} but the mesh has {} vertices",
-                    positions.len()
-                )));
-            }
-        }
-    }
-    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        return Err(Error::input(format!("mesh vertex {i} has a non-finite coordinate")));
-    }
-    let bbox = Aabb::of(faces.iter().flatten().map(|&v| positions[v as usize]));
-    let diag = bbox.diagonal();
-    if !(diag > 0.0 && diag.is_finite()) {
-        return Err(Error::input("the mesh has zero extent"));
-    }
-    let spacing = opts.spacing.unwrap_or(SampleOptions::DEFAULT_SPACING_RELATIVE * diag);
-    if !(spacing.is_finite() && spacing > 0.0) {
-        return Err(Error::usage(format!("sample spacing {spacing} is not a positive distance")));
-    }
-    if spacing * 1e6 < diag {
-        return Err(Error::usage(format!(
-            "sample spacing {spacing} is below 1e-6 of the mesh's size {diag:.4e}; the network would be too large"
-        )));
-    }
-    if opts.planes.iter().sum::<usize>() == 0 {
-        return Err(Error::usage("no section planes: give at least one plane count above 0"));
-    }
-    if !opts.tilt.is_finite() {
-        return Err(Error::usage(format!("tilt {} is not a finite angle", opts.tilt)));
-    }
-    if !(opts.noise.is_finite() && opts.noise >= 0.0) {
-        return Err(Error::usage(format!("noise {} is not a non-negative number", opts.noise)));
-    }
-    // Weld vertices at the same position (unwelded seams would read as boundary).
-    let mut first_at: HashMap<[u64; 3], u32> = HashMap::new();
-    let weld: Vec<u32> = positions
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let key = (*p + DVec3::ZERO).to_array().map(f64::to_bits);
-            *first_at.entry(key).or_insert(i as u32)
-        })
-        .collect();
-    let mut welded: Vec<[u32; 3]> = faces
-        .iter()
-        .map(|f| f.map(|v| weld[v as usize]))
-        .filter(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2])
-        .collect();
-    let mut moved = positions.to_vec();
-    // The network's snapping tolerance: the crossings fall between samples by the chord sag
-    // and the noise, a few percent of the spacing each ([`SampleOptions::SNAP_SPACING`]).
-    let snap = SampleOptions::SNAP_SPACING * spacing;
-    let near = 2.0 * snap;
-    let zipped = zip_cracks(&mut moved, &mut welded, near);
-    let pinches = split_pinches(&mut moved, &mut welded, near);
-    // Crossings closer than this are moved apart: one sample spacing, and well beyond the
-    // pipeline's node clustering (twice its snapping tolerance).
-    let gap = spacing.max(2.0 * near);
-    // Two crossings of the same two sections: the same.
-    let gap_same = gap;
-    let (positions, faces) = (&moved[..], &welded[..]);
-    let normals = vertex_normals(positions, faces);
-
-    // Faces around each undirected edge.
-    let mut edge_faces: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-    for (fi, f) in faces.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            if a == b {
-                continue;
-            }
-            edge_faces.entry(edge_key(a, b)).or_default().push(fi);
-        }
-    }
-    if let Some((e, fs)) = edge_faces.iter().find(|(_, fs)| fs.len() > 2) {
-        return Err(Error::input(format!(
-            "the mesh is not a 2-manifold: edge between vertices {} and {} is shared by {} faces",
-            e.0,
-            e.1,
-            fs.len()
-        )));
-    }
-
+    let bbox = mesh::check_mesh(positions, faces)?;
+    let scales = Scales::new(bbox, opts)?;
+    check_options(opts)?;
+    let (mesh, repairs) = Mesh::repaired(positions, faces, scales.near)?;
     let principal = opts.curves == CurveFamily::Principal;
-    let (mut traced, ends_on_boundary, unresolved, unresolved_at, mut crossings, report_trimmed) = if principal {
-        // Curves along the principal directions, `separation` apart.
-        let ext = bbox.max - bbox.min;
-        let counts: Vec<f64> = opts.planes.iter().filter(|&&k| k > 0).map(|&k| k as f64).collect();
-        let mean_count = counts.iter().sum::<f64>() / counts.len().max(1) as f64;
-        let separation = PRINCIPAL_SEPARATION * (ext.x + ext.y + ext.z) / 3.0 / mean_count.max(1.0);
-        let axis = section_directions(opts.tilt)[2];
-        let r = principal::trace(positions, faces, &normals, &edge_faces, axis, separation, spacing, near, gap, diag);
-        let mut bad: Vec<usize> = r.spots.iter().map(|x| x.0).collect();
-        bad.sort_unstable();
-        bad.dedup();
-        (r.traced, r.ends_on_boundary, bad.len(), r.spots, r.crossings, 0)
+    let traces = if principal {
+        principal::trace_principal(&mesh, opts, &scales)
     } else {
-        // Section planes: axis, level, away from vertex levels ([`plane_level`]).
-        let dirs = section_directions(opts.tilt);
-        let mut planes: Vec<(usize, f64)> = Vec::new();
-        // Per plane: its nominal level, the sorted vertex levels along its axis, the slab width.
-        let mut nominal: Vec<f64> = Vec::new();
-        let mut axis_levels: Vec<Vec<f64>> = vec![Vec::new(); 3];
-        let mut slab_of = [0.0; 3];
-        for axis in 0..3 {
-            let k = opts.planes[axis];
-            let dir = dirs[axis];
-            let mut levels: Vec<f64> = positions.iter().map(|p| p.dot(dir)).collect();
-            levels.sort_by(f64::total_cmp);
-            let (lo, hi) = (levels[0], levels[levels.len() - 1]);
-            let ext = hi - lo;
-            if k == 0 || !(ext > 1e-9 * diag) {
-                continue;
-            }
-            let slab = ext / k as f64;
-            for i in 0..k {
-                let c = lo + (i as f64 + 0.5) * slab;
-                nominal.push(c);
-                planes.push((axis, plane_level(&levels, c, 0.3 * slab)));
-            }
-            axis_levels[axis] = levels;
-            slab_of[axis] = slab;
-        }
-
-        let edge_point = |e: (u32, u32), plane: (usize, f64)| -> (DVec3, DVec3) {
-            let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
-            let (sa, sb) = (a.dot(dirs[plane.0]) - plane.1, b.dot(dirs[plane.0]) - plane.1);
-            let t = (sa / (sa - sb)).clamp(0.0, 1.0);
-            let n = normals[e.0 as usize].lerp(normals[e.1 as usize], t);
-            (a.lerp(b, t), n)
-        };
-        let face_normal_at = |fi: usize, p: DVec3| -> DVec3 {
-            let v = faces[fi].map(|i| positions[i as usize]);
-            let area = (v[1] - v[0]).cross(v[2] - v[0]);
-            let a2 = area.length_squared();
-            if a2 == 0.0 {
-                return normals[faces[fi][0] as usize];
-            }
-            let w0 = (v[1] - p).cross(v[2] - p).dot(area) / a2;
-            let w1 = (v[2] - p).cross(v[0] - p).dot(area) / a2;
-            let w2 = 1.0 - w0 - w1;
-            let [n0, n1, n2] = faces[fi].map(|i| normals[i as usize]);
-            w0 * n0 + w1 * n1 + w2 * n2
-        };
-        let cos_min = MIN_CROSSING_ANGLE_DEG.to_radians().cos();
-        // Sections of two planes closer than `near` away from their crossings would be snapped
-        // together by the pipeline: twice its default snapping tolerance (Network::snap_tolerance).
-        let mut round = 0;
-        let unresolved;
-        let unresolved_at: Vec<(usize, DVec3)>;
-        let mut final_pass = false;
-        let mut best: Option<(usize, Vec<(usize, f64)>)> = None;
-        let mut rng = crate::network::Rng::new(0x5EC7);
-        let (cuts, crossing_at, crossings) = loop {
-            // Cut every face by every plane.
-            let mut cuts_of_face: Vec<Vec<usize>> = vec![Vec::new(); faces.len()];
-            let mut cuts: Vec<FaceCut> = Vec::new();
-            for (pi, &(axis, c)) in planes.iter().enumerate() {
-                for (fi, f) in faces.iter().enumerate() {
-                    let side = f.map(|v| positions[v as usize].dot(dirs[axis]) > c);
-                    if side[0] == side[1] && side[1] == side[2] {
-                        continue;
-                    }
-                    let mut edges = Vec::with_capacity(2);
-                    for k in 0..3 {
-                        if side[k] != side[(k + 1) % 3] {
-                            edges.push(edge_key(f[k], f[(k + 1) % 3]));
-                        }
-                    }
-                    if edges.len() != 2 {
-                        continue;
-                    }
-                    let e = [edges[0], edges[1]];
-                    let ends = e.map(|e| edge_point(e, (axis, c)).0);
-                    cuts_of_face[fi].push(cuts.len());
-                    cuts.push(FaceCut { plane: pi, edges: e, ends });
-                }
-            }
-            // Crossings: per face, for two cuts of different axes, the point of the first cut on
-            // the second's plane (the triangle's point on both planes), shared by both polylines.
-            // crossing_at[cut] = list of (parameter along ends[0] → ends[1], sample).
-            let mut crossing_at: Vec<Vec<(f64, Raw)>> = vec![Vec::new(); cuts.len()];
-            let mut crossings = 0usize;
-            let mut shallow: Vec<(usize, DVec3)> = Vec::new();
-            let mut crossing_points: HashMap<(usize, usize), Vec<DVec3>> = HashMap::new();
-            for (fi, list) in cuts_of_face.iter().enumerate() {
-                for (x, &ca) in list.iter().enumerate() {
-                    for &cb in &list[x + 1..] {
-                        let (a, b) = (&cuts[ca], &cuts[cb]);
-                        let (axis_a, lev_a) = planes[a.plane];
-                        let (axis_b, lev_b) = planes[b.plane];
-                        if axis_a == axis_b {
-                            continue;
-                        }
-                        // Parameter on a where a's line meets b's plane, and on b where it meets a's.
-                        let (sa0, sa1) = (a.ends[0].dot(dirs[axis_b]) - lev_b, a.ends[1].dot(dirs[axis_b]) - lev_b);
-                        let (sb0, sb1) = (b.ends[0].dot(dirs[axis_a]) - lev_a, b.ends[1].dot(dirs[axis_a]) - lev_a);
-                        if (sa0 > 0.0) == (sa1 > 0.0) || (sb0 > 0.0) == (sb1 > 0.0) {
-                            continue;
-                        }
-                        let ta = sa0 / (sa0 - sa1);
-                        let tb = sb0 / (sb0 - sb1);
-                        let p = a.ends[0].lerp(a.ends[1], ta);
-                        let raw = Raw { p, n: face_normal_at(fi, p), node: true };
-                        crossing_at[ca].push((ta, raw));
-                        crossing_at[cb].push((tb, raw));
-                        crossings += 1;
-                        crossing_points.entry((a.plane.min(b.plane), a.plane.max(b.plane))).or_default().push(p);
-                        let (da, db) = (a.ends[1] - a.ends[0], b.ends[1] - b.ends[0]);
-                        let cos = da.dot(db).abs() / (da.length() * db.length());
-                        if cos > cos_min {
-                            shallow.push((b.plane, p));
-                        }
-                    }
-                }
-            }
-            // The mesh boundary as a pseudo-plane (index planes.len()): sections must end on it at
-            // a fair angle and not run alongside it.
-            let boundary_plane = planes.len();
-            let mut with_boundary: Vec<FaceCut> = cuts.clone();
-            if opts.boundary {
-                for (e, fs) in &edge_faces {
-                    if fs.len() == 1 {
-                        let ends = [positions[e.0 as usize], positions[e.1 as usize]];
-                        with_boundary.push(FaceCut { plane: boundary_plane, edges: [*e, *e], ends });
-                    }
-                }
-                for c in &cuts {
-                    for k in 0..2 {
-                        if edge_faces.get(&c.edges[k]).is_some_and(|f| f.len() == 1) {
-                            crossing_points.entry((c.plane, boundary_plane)).or_default().push(c.ends[k]);
-                            let e = positions[c.edges[k].1 as usize] - positions[c.edges[k].0 as usize];
-                            let d = c.ends[1] - c.ends[0];
-                            if d.dot(e).abs() / (d.length() * e.length()) > cos_min {
-                                shallow.push((c.plane, c.ends[k]));
-                            }
-                        }
-                    }
-                }
-            }
-            shallow.extend(near_misses(&with_boundary, &crossing_points, near, boundary_plane));
-            // Crossings closer than `gap` to each other: two crossings of the same two sections
-            // (the pipeline would merge them into one node where the curves touch without
-            // crossing), or three sections nearly through one point (a tiny cell whose nodes the
-            // pipeline cannot tell apart once the crossings fall between noisy samples).
-            shallow.extend(close_crossings(&crossing_points, gap, gap_same, boundary_plane));
-            let mut bad: Vec<usize> = shallow.iter().map(|x| x.0).collect();
-            bad.sort_unstable();
-            bad.dedup();
-            round += 1;
-            if bad.is_empty() || final_pass {
-                unresolved = bad.len();
-                unresolved_at = shallow;
-                break (cuts, crossing_at, crossings);
-            }
-            if best.as_ref().is_none_or(|b| bad.len() < b.0) {
-                best = Some((bad.len(), planes.clone()));
-            }
-            if round > MAX_PLANE_MOVES {
-                // Out of moves: cut once more with the best configuration seen.
-                if let Some((_, p)) = best.take() {
-                    planes = p;
-                }
-                final_pass = true;
-                continue;
-            }
-            // Move each plane in a bad crossing to a random level within ±45% of the slab width
-            // around its nominal level (deterministic: the generator has a fixed seed).
-            for pi in bad {
-                let axis = planes[pi].0;
-                let slab = slab_of[axis];
-                let offset = (2.0 * rng.uniform() - 1.0) * 0.45 * slab;
-                planes[pi].1 = plane_level(&axis_levels[axis], nominal[pi] + offset, 0.03 * slab);
-            }
-        };
-
-        // Chain the cuts of each plane into polylines through shared edges.
-        let mut traced: Vec<Traced> = Vec::new();
-        // Section end points on boundary edges, for the boundary loops: edge → (point, normal).
-        let mut ends_on_boundary: HashMap<(u32, u32), Vec<Raw>> = HashMap::new();
-        let mut report_trimmed = 0;
-        let boundary_grid = BoundaryGrid::new(positions, &edge_faces, 3.0 * snap);
-        // Boundary loop of each boundary vertex (components of the boundary edges).
-        let mut loop_uf = crate::topology::UnionFind::new(positions.len());
-        for (e, fs) in &edge_faces {
-            if fs.len() == 1 {
-                loop_uf.union(e.0 as usize, e.1 as usize);
-            }
-        }
-        let loop_of: Vec<usize> = (0..positions.len()).map(|v| loop_uf.find(v)).collect();
-        let mut cuts_of_plane: Vec<Vec<usize>> = vec![Vec::new(); planes.len()];
-        for (ci, c) in cuts.iter().enumerate() {
-            cuts_of_plane[c.plane].push(ci);
-        }
-        let axis_name = ["X", "Y", "Z"];
-        for (pi, list) in cuts_of_plane.iter().enumerate() {
-            let mut by_edge: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-            for &ci in list {
-                for e in cuts[ci].edges {
-                    by_edge.entry(e).or_default().push(ci);
-                }
-            }
-            let mut used: HashMap<usize, bool> = list.iter().map(|&c| (c, false)).collect();
-            // Open chains start at a boundary edge (one cut), then closed loops.
-            let mut starts: Vec<(usize, usize)> = Vec::new();
-            for &ci in list {
-                for k in 0..2 {
-                    if by_edge[&cuts[ci].edges[k]].len() == 1 {
-                        starts.push((ci, k));
-                    }
-                }
-            }
-            let closed_starts: Vec<(usize, usize)> = list.iter().map(|&c| (c, 0)).collect();
-            let mut piece = 0;
-            for (ci0, k0) in starts.into_iter().chain(closed_starts) {
-                if used[&ci0] {
-                    continue;
-                }
-                let mut samples = Vec::new();
-                let (mut ci, mut enter) = (ci0, k0);
-                let closed;
-                loop {
-                    *used.get_mut(&ci).unwrap_or(&mut false) = true;
-                    let c = &cuts[ci];
-                    let e_in = c.edges[enter];
-                    let (p, n) = edge_point(e_in, planes[pi]);
-                    samples.push(Raw { p, n, node: false });
-                    let mut xs = crossing_at[ci].clone();
-                    if enter == 0 {
-                        xs.sort_by(|a, b| a.0.total_cmp(&b.0));
-                    } else {
-                        xs.sort_by(|a, b| b.0.total_cmp(&a.0));
-                    }
-                    samples.extend(xs.into_iter().map(|x| x.1));
-                    let e_out = c.edges[1 - enter];
-                    let next = by_edge[&e_out].iter().copied().find(|&o| o != ci);
-                    match next {
-                        Some(o) if o == ci0 => {
-                            closed = true;
-                            break;
-                        }
-                        Some(o) if !used[&o] => {
-                            enter = if cuts[o].edges[0] == e_out { 0 } else { 1 };
-                            ci = o;
-                        }
-                        _ => {
-                            let (p, n) = edge_point(e_out, planes[pi]);
-                            samples.push(Raw { p, n, node: false });
-                            closed = false;
-                            break;
-                        }
-                    }
-                }
-                if !closed {
-                    // Ends on boundary edges meet the boundary loops there. An end that runs along
-                    // the boundary first is cut back to where it leaves it (`trim_along`).
-                    let mut end_edges = [cuts[ci0].edges[k0], cuts[ci].edges[1 - enter]];
-                    if opts.boundary {
-                        for side in 0..2 {
-                            if edge_faces.get(&end_edges[side]).is_none_or(|f| f.len() != 1) {
-                                continue;
-                            }
-                            if side == 1 {
-                                samples.reverse();
-                            }
-                            let same_loop = loop_of[end_edges[side].0 as usize];
-                            if let Some(e) = trim_along(
-                                &mut samples,
-                                &boundary_grid,
-                                3.0 * snap,
-                                positions,
-                                &normals,
-                                &|e: (u32, u32)| loop_of[e.0 as usize] == same_loop,
-                            ) {
-                                end_edges[side] = e;
-                                report_trimmed += 1;
-                            }
-                            if side == 1 {
-                                samples.reverse();
-                            }
-                        }
-                    }
-                    if samples.len() < 2 {
-                        continue;
-                    }
-                    for (e, raw) in [(end_edges[0], samples[0]), (end_edges[1], samples[samples.len() - 1])] {
-                        if edge_faces.get(&e).is_some_and(|f| f.len() == 1) {
-                            ends_on_boundary.entry(e).or_default().push(raw);
-                        }
-                    }
-                }
-                let (axis, lev) = planes[pi];
-                traced.push(Traced {
-                    plane: Some(pi),
-                    samples,
-                    closed,
-                    boundary: false,
-                    name: format!("{}={:.6} #{piece}", axis_name[axis], lev),
-                    cut: false,
-                });
-                piece += 1;
-            }
-        }
-        (traced, ends_on_boundary, unresolved, unresolved_at, crossings, report_trimmed)
+        sections::trace_sections(&mesh, opts, &scales)
     };
-    // Section ends on the boundary are nodes (when the boundary loop is kept).
+    let mut crossings = traces.crossings;
     let mut boundary_loops = Vec::new();
     if opts.boundary {
-        boundary_loops = trace_boundary(positions, faces, &normals, &edge_faces, &ends_on_boundary, &mut crossings);
+        boundary_loops = boundary::trace_boundary(&mesh, &traces.ends_on_boundary, &mut crossings);
     }
-    let has_boundary = !boundary_loops.is_empty();
-    for t in &mut traced {
-        // Plane sections end on the boundary (principal curves mark their own ends there).
-        if !t.closed && has_boundary && !principal {
-            let last = t.samples.len() - 1;
-            t.samples[0].node = true;
-            t.samples[last].node = true;
-        }
-    }
-    let mut report =
-        SampleReport { spacing, crossings, pinches, zipped, unresolved, trimmed: report_trimmed, ..Default::default() };
-    // Where each section must be cut: the planes' bad spots still left after the plane moves,
-    // and section ends on the boundary closer than `gap` to another one (the boundary nearly
-    // touching itself, or a cut-back end moved next to another one: the pipeline would merge
-    // them into a node with too many boundary ends; the shorter piece's end is cut).
-    let mut spots: Vec<Vec<DVec3>> = traced
-        .iter()
-        .map(|t| match t.plane {
-            Some(p) => unresolved_at
-                .iter()
-                .filter(|(q, at)| *q == p && t.samples.iter().any(|r| r.p.distance(*at) <= gap))
-                .map(|x| x.1)
-                .collect(),
-            None => Vec::new(),
-        })
-        .collect();
-    // Sections that turn back within the surface (by more than [`SHARP_TURN_DEG`] about the
-    // normal: a plane that grazes one side of a sharp crease, so that the section runs along the
-    // crease before it crosses it) are cut there: the patches on the two sides of such a
-    // corner fold over in any plane (fandisk).
-    for (t, s) in traced.iter().zip(spots.iter_mut()) {
-        let at = sharp_turns(&t.samples, t.closed, 0.5 * spacing, SHARP_TURN_DEG);
-        report.sharp_turns += at.len();
-        s.extend(at);
-    }
-    let ends: Vec<(usize, DVec3, f64)> = traced
-        .iter()
-        .enumerate()
-        .filter(|(_, t)| !t.closed && t.samples.len() >= 2)
-        .flat_map(|(i, t)| {
-            let len: f64 = t.samples.windows(2).map(|w| w[0].p.distance(w[1].p)).sum();
-            [(i, t.samples[0].p, len), (i, t.samples[t.samples.len() - 1].p, len)]
-        })
-        .collect();
-    let mut crowded = vec![false; ends.len()];
-    for (a, ea) in ends.iter().enumerate() {
-        for (b, eb) in ends.iter().enumerate().skip(a + 1) {
-            if ea.0 != eb.0 && ea.1.distance(eb.1) <= gap && !crowded[a] && !crowded[b] {
-                let (k, e) = if ea.2 <= eb.2 { (a, ea) } else { (b, eb) };
-                crowded[k] = true;
-                spots[e.0].push(e.1);
-            }
-        }
-    }
-    // A section in a bad spot loses the stretch around it, between the crossings on either
-    // side (the rest of the section still bounds patches, ending on those crossings).
-    let mut pieces: Vec<Traced> = Vec::new();
-    for (t, s) in traced.into_iter().zip(&spots) {
-        if s.is_empty() {
-            pieces.push(t);
-            continue;
-        }
-        report.cut_bad += 1;
-        pieces.extend(cut_at_spots(t, s, gap));
-    }
-    // Sections that meet no other curve (a crossing inside; the ends on the boundary do not
-    // count, nor do a cut piece's ends alone if they are not crossings) are left out.
-    pieces.retain(|t| {
-        let nodes = t.samples.iter().filter(|s| s.node).count();
-        let m = t.samples.len();
-        let inner = t.samples.iter().enumerate().filter(|&(k, s)| s.node && k > 0 && k + 1 < m).count();
-        let meets = if t.closed { nodes > 0 } else { inner > 0 || (t.cut && nodes == 2) };
-        if !meets {
-            report.dropped_sections += 1;
-        }
-        meets
-    });
-    // Boundary loops: each section end on the loop is a node sample of it. Loops around holes
-    // too small or too thin to be sampled as curves are left out (the hole covered). A loop
-    // that no section reaches bounds no patch of the network; a loop that one section reaches
-    // would bound a hole inside a patch joined to the rest by that section only (a bridge the
-    // pipeline cannot surface: patches are disks): it is left out too, the hole covered. The
-    // ends of sections on a loop left out are cut back to their last crossing (they would
-    // dangle); repeated, since a cut may leave another loop with one section.
-    let key = |p: DVec3| p.to_array().map(f64::to_bits);
-    let mut loop_at: HashMap<[u64; 3], usize> = HashMap::new();
-    let mut loops_kept = vec![true; boundary_loops.len()];
-    let mut loop_curves: Vec<Option<(Vec<DVec3>, Vec<DVec3>)>> = Vec::with_capacity(boundary_loops.len());
-    for (li, l) in boundary_loops.iter().enumerate() {
-        for r in l.samples.iter().filter(|r| r.node) {
-            loop_at.insert(key(r.p), li);
-        }
-        // A hole smaller than a few sample spacings, or slit-shaped (its sides within `near`
-        // of each other), would run alongside itself.
-        let (points, normals) = resample(&l.samples, true, spacing, opts.shared_nodes);
-        let small = Aabb::of(l.samples.iter().map(|r| r.p)).diagonal() < 3.0 * spacing
-            || (points.len() <= 40 && thin_loop(&points, near));
-        if small {
-            report.small_holes += 1;
-            loops_kept[li] = false;
-        }
-        loop_curves.push(Some((points, normals)));
-    }
-    for _ in 0..=boundary_loops.len() + pieces.len() {
-        // Section ends per loop: (piece, at its first sample).
-        let mut contacts: Vec<Vec<(usize, bool)>> = vec![Vec::new(); boundary_loops.len()];
-        for (i, t) in pieces.iter().enumerate().filter(|(_, t)| !t.closed) {
-            for (first, r) in [(true, t.samples[0]), (false, t.samples[t.samples.len() - 1])] {
-                if let Some(&li) = loop_at.get(&key(r.p)).filter(|_| r.node) {
-                    contacts[li].push((i, first));
-                }
-            }
-        }
-        for (li, c) in contacts.iter().enumerate() {
-            if loops_kept[li] && c.len() < 2 {
-                loops_kept[li] = false;
-                if c.is_empty() {
-                    report.dropped_boundary_loops += 1;
-                } else {
-                    report.single_contact_holes += 1;
-                }
-            }
-        }
-        // Every open piece must end where another curve passes: on a kept boundary loop, or
-        // (a piece cut at a bad spot) on a crossing that a kept section passes through. The crossing samples are
-        // shared by both curves, so the ends are found by position. Other ends are cut back
-        // to the piece's last crossing.
-        // Crossings that a kept section passes through (not where it ends: two pieces ending
-        // on their own crossing would make a corner, not a junction). Principal curves may
-        // end in such corners (at about 90°): their free ends are cut back to their last
-        // crossing, and two curves often end on the same one (cutting both further would
-        // peel the whole network from its free ends).
-        let mut on_sections: HashMap<[u64; 3], Vec<usize>> = HashMap::new();
-        for (i, t) in pieces.iter().enumerate() {
-            let m = t.samples.len();
-            for (k, r) in t.samples.iter().enumerate() {
-                if r.node && (t.closed || (k > 0 && k + 1 < m) || principal) {
-                    on_sections.entry(key(r.p)).or_default().push(i);
-                }
-            }
-        }
-        let supported = |i: usize, r: Raw| {
-            r.node
-                && (loop_at.get(&key(r.p)).is_some_and(|&li| loops_kept[li])
-                    || on_sections.get(&key(r.p)).is_some_and(|l| l.iter().any(|&j| j != i)))
-        };
-        let mut cut_ends: Vec<Vec<DVec3>> = vec![Vec::new(); pieces.len()];
-        for (i, t) in pieces.iter().enumerate().filter(|(_, t)| !t.closed) {
-            for r in [t.samples[0], t.samples[t.samples.len() - 1]] {
-                if !supported(i, r) {
-                    cut_ends[i].push(r.p);
-                }
-            }
-        }
-        if cut_ends.iter().all(|c| c.is_empty()) {
-            break;
-        }
-        let old = std::mem::take(&mut pieces);
-        for (t, ends) in old.into_iter().zip(cut_ends) {
-            if ends.is_empty() {
-                pieces.push(t);
-            } else {
-                pieces.extend(
-                    cut_at_spots(t, &ends, 0.0)
-                        .into_iter()
-                        .filter(|t| t.samples.iter().filter(|s| s.node).count() >= 2),
-                );
-            }
-        }
-    }
-    let mut curves = Vec::new();
-    let kept_loops =
-        boundary_loops.into_iter().zip(loop_curves).zip(loops_kept).filter(|(_, k)| *k).map(|((t, pn), _)| (t, pn));
-    for (t, pn) in pieces.into_iter().map(|t| (t, None)).chain(kept_loops) {
-        let (mut points, mut normals) =
-            pn.unwrap_or_else(|| resample(&t.samples, t.closed, spacing, opts.shared_nodes));
-        report.hairpins += remove_hairpins(&mut points, &mut normals, t.closed, near);
-        let need = if t.closed { 3 } else { 2 };
-        if points.len() < need {
-            continue;
-        }
-        if t.boundary {
-            report.boundary_loops += 1;
-        } else {
-            report.sections += 1;
-        }
-        curves.push(Curve { name: Some(t.name), points, normals, closed: t.closed, boundary: t.boundary });
-    }
-    if report.crossings == 0 || curves.is_empty() {
-        return Err(Error::topology(
-            "the plane sections do not cross each other on the mesh: give more planes (`planes`) in at least two directions",
-        ));
-    }
-    let mut net = Network { curves, snap: Some(snap) };
-    if opts.noise > 0.0 {
-        net = net.perturbed(opts.noise, opts.seed);
-    }
+    let mut traced = traces.traced;
+    boundary::mark_ends(&mut traced, !boundary_loops.is_empty() && !principal);
+    let mut report = SampleReport {
+        spacing: scales.spacing,
+        crossings,
+        pinches: repairs.pinches,
+        zipped: repairs.zipped,
+        unresolved: traces.unresolved,
+        trimmed: traces.trimmed,
+        ..Default::default()
+    };
+    let pieces = cut::cut_bad_spots(traced, &traces.spots, &scales, &mut report);
+    let (pieces, loops) = holes::cover_holes(pieces, boundary_loops, opts, &scales, &mut report);
+    let net = network::assemble(pieces, loops, opts, &scales, &mut report)?;
     Ok((net, report))
-}
-
-/// Planes to move so that no two crossings are closer than `gap` (`gap_same` for two
-/// crossings of the same two planes): of two close crossings, a plane they share is kept and
-/// the other one with the larger index is returned.
-fn close_crossings(
-    crossing_points: &HashMap<(usize, usize), Vec<DVec3>>,
-    gap: f64,
-    gap_same: f64,
-    first_virtual: usize,
-) -> Vec<(usize, DVec3)> {
-    let mut out = Vec::new();
-    for (key, ps) in crossing_points {
-        if let Some(p) = ps.iter().enumerate().find(|(i, p)| ps[i + 1..].iter().any(|q| q.distance(**p) <= gap_same)) {
-            out.push((if key.1 >= first_virtual { key.0 } else { key.1 }, *p.1));
-        }
-    }
-    let h = gap.max(f64::MIN_POSITIVE);
-    let cell = |p: DVec3| ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
-    let mut all: Vec<((usize, usize), DVec3)> =
-        crossing_points.iter().flat_map(|(k, ps)| ps.iter().map(move |p| (*k, *p))).collect();
-    all.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.x.total_cmp(&b.1.x)));
-    let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
-    for (i, (_, p)) in all.iter().enumerate() {
-        grid.entry(cell(*p)).or_default().push(i);
-    }
-    for (i, (ka, p)) in all.iter().enumerate() {
-        let c = cell(*p);
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    for &j in grid.get(&(c.0 + dx, c.1 + dy, c.2 + dz)).map_or(&[][..], |v| &v[..]) {
-                        let (kb, q) = &all[j];
-                        if j <= i || q.distance(*p) > gap {
-                            continue;
-                        }
-                        let planes = [ka.0, ka.1, kb.0, kb.1];
-                        let shared = planes.iter().find(|&&x| planes.iter().filter(|&&y| y == x).count() > 1);
-                        let pick = planes
-                            .iter()
-                            .copied()
-                            .filter(|x| Some(x) != shared && *x < first_virtual)
-                            .max()
-                            .unwrap_or(ka.0);
-                        out.push((pick, *p));
-                    }
-                }
-            }
-        }
-    }
-    out
-}
-
-/// Closes cracks in the mesh: a boundary vertex closer than `tol` to a boundary vertex it
-/// shares no face with (the two sides of a narrow slit, an unwelded seam with a small gap) is
-/// welded to it (both move to their midpoint). Faces that degenerate are dropped. Nothing is
-/// changed if welding would make an edge non-manifold. Returns the number of vertices welded.
-pub fn zip_cracks(positions: &mut [DVec3], faces: &mut Vec<[u32; 3]>, tol: f64) -> usize {
-    let mut count: HashMap<(u32, u32), usize> = HashMap::new();
-    for f in faces.iter() {
-        for k in 0..3 {
-            *count.entry(edge_key(f[k], f[(k + 1) % 3])).or_default() += 1;
-        }
-    }
-    let mut boundary: Vec<u32> =
-        count.iter().filter(|(_, &c)| c == 1).flat_map(|(e, _)| [e.0, e.1]).collect::<Vec<_>>();
-    boundary.sort_unstable();
-    boundary.dedup();
-    if boundary.is_empty() {
-        return 0;
-    }
-    let mut neighbours: HashMap<u32, Vec<u32>> = HashMap::new();
-    for f in faces.iter() {
-        for &a in f {
-            for &b in f {
-                if a != b {
-                    neighbours.entry(a).or_default().push(b);
-                }
-            }
-        }
-    }
-    let h = tol.max(f64::MIN_POSITIVE);
-    let cell = |p: DVec3| ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
-    let mut grid: HashMap<(i64, i64, i64), Vec<u32>> = HashMap::new();
-    for &v in &boundary {
-        grid.entry(cell(positions[v as usize])).or_default().push(v);
-    }
-    let mut uf = crate::topology::UnionFind::new(positions.len());
-    let mut welded = 0;
-    for &v in &boundary {
-        let p = positions[v as usize];
-        let c = cell(p);
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    for &w in grid.get(&(c.0 + dx, c.1 + dy, c.2 + dz)).map_or(&[][..], |l| &l[..]) {
-                        if w > v
-                            && positions[w as usize].distance(p) <= tol
-                            && !neighbours.get(&v).is_some_and(|n| n.contains(&w))
-                        {
-                            uf.union(v as usize, w as usize);
-                            welded += 1;
-                        }
-                    }
-                }
-            }
-        }
-    }
-    if welded == 0 {
-        return 0;
-    }
-    let new_faces: Vec<[u32; 3]> = faces
-        .iter()
-        .map(|f| f.map(|v| uf.find(v as usize) as u32))
-        .filter(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2])
-        .collect();
-    let mut count: HashMap<(u32, u32), usize> = HashMap::new();
-    for f in &new_faces {
-        for k in 0..3 {
-            *count.entry(edge_key(f[k], f[(k + 1) % 3])).or_default() += 1;
-        }
-    }
-    if count.values().any(|&c| c > 2) {
-        return 0;
-    }
-    // Move each welded group to its mean.
-    let mut sum: HashMap<usize, (DVec3, usize)> = HashMap::new();
-    for &v in &boundary {
-        let r = uf.find(v as usize);
-        let e = sum.entry(r).or_insert((DVec3::ZERO, 0));
-        e.0 += positions[v as usize];
-        e.1 += 1;
-    }
-    for (r, (s, n)) in sum {
-        if n > 1 {
-            positions[r] = s / n as f64;
-        }
-    }
-    *faces = new_faces;
-    welded
-}
-
-/// Splits every vertex whose faces form several fans (a pinch: the boundary touches itself
-/// there, or two sheets meet at a point) into one vertex per fan, and moves each copy towards
-/// the mean of its fan's other vertices by `offset` (at most 40% of the way), so that the
-/// boundary curves through it do not touch. Returns the number of vertices split.
-pub fn split_pinches(positions: &mut Vec<DVec3>, faces: &mut [[u32; 3]], offset: f64) -> usize {
-    let mut faces_of: Vec<Vec<usize>> = vec![Vec::new(); positions.len()];
-    for (fi, f) in faces.iter().enumerate() {
-        for &v in f {
-            faces_of[v as usize].push(fi);
-        }
-    }
-    let mut split = 0;
-    for v in 0..faces_of.len() {
-        let fs = std::mem::take(&mut faces_of[v]);
-        if fs.len() < 2 {
-            continue;
-        }
-        // Fans: faces around v joined through the edges (v, w) they share.
-        let mut fan = vec![usize::MAX; fs.len()];
-        let mut count = 0;
-        for start in 0..fs.len() {
-            if fan[start] != usize::MAX {
-                continue;
-            }
-            fan[start] = count;
-            let mut stack = vec![start];
-            while let Some(i) = stack.pop() {
-                let fi = &faces[fs[i]];
-                for (j, gj) in fs.iter().enumerate() {
-                    let shares = fi.iter().filter(|&&w| w != v as u32 && faces[*gj].contains(&w)).count() > 0;
-                    if fan[j] == usize::MAX && shares {
-                        fan[j] = count;
-                        stack.push(j);
-                    }
-                }
-            }
-            count += 1;
-        }
-        if count < 2 {
-            continue;
-        }
-        split += 1;
-        let p = positions[v];
-        for k in 0..count {
-            let members: Vec<usize> = (0..fs.len()).filter(|&i| fan[i] == k).map(|i| fs[i]).collect();
-            let others: Vec<DVec3> = members
-                .iter()
-                .flat_map(|&fi| faces[fi].iter().copied().filter(|&w| w != v as u32).collect::<Vec<_>>())
-                .map(|w| positions[w as usize])
-                .collect();
-            let mean = others.iter().sum::<DVec3>() / others.len().max(1) as f64;
-            let step = (mean - p).clamp_length_max((0.4 * (mean - p).length()).min(offset));
-            let id = if k == 0 {
-                v as u32
-            } else {
-                positions.push(p);
-                (positions.len() - 1) as u32
-            };
-            positions[id as usize] = p + step;
-            for fi in members {
-                for w in faces[fi].iter_mut() {
-                    if *w == v as u32 {
-                        *w = id;
-                    }
-                }
-            }
-        }
-    }
-    split
-}
-
-/// The boundary loops of the mesh as boundary curves: mesh vertices along the loop with the
-/// section end points on its edges inserted as nodes.
-fn trace_boundary(
-    positions: &[DVec3],
-    faces: &[[u32; 3]],
-    normals: &[DVec3],
-    edge_faces: &HashMap<(u32, u32), Vec<usize>>,
-    ends_on_boundary: &HashMap<(u32, u32), Vec<Raw>>,
-    crossings: &mut usize,
-) -> Vec<Traced> {
-    // Directed boundary edges as their face has them (the surface on their left).
-    let mut next_of: HashMap<u32, Vec<u32>> = HashMap::new();
-    for f in faces {
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            if a != b && edge_faces.get(&edge_key(a, b)).is_some_and(|fs| fs.len() == 1) {
-                next_of.entry(a).or_default().push(b);
-            }
-        }
-    }
-    let mut starts: Vec<u32> = next_of.keys().copied().collect();
-    starts.sort_unstable();
-    let mut loops = Vec::new();
-    for s in starts {
-        while next_of.get(&s).is_some_and(|v| !v.is_empty()) {
-            let mut verts = vec![s];
-            let mut v = s;
-            loop {
-                let Some(list) = next_of.get_mut(&v) else { break };
-                let Some(w) = list.pop() else { break };
-                if w == s {
-                    break;
-                }
-                verts.push(w);
-                v = w;
-            }
-            if verts.len() < 3 {
-                continue;
-            }
-            let m = verts.len();
-            let mut samples = Vec::new();
-            for k in 0..m {
-                let (a, b) = (verts[k], verts[(k + 1) % m]);
-                samples.push(Raw { p: positions[a as usize], n: normals[a as usize], node: false });
-                if let Some(list) = ends_on_boundary.get(&edge_key(a, b)) {
-                    let (pa, pb) = (positions[a as usize], positions[b as usize]);
-                    let d = pb - pa;
-                    let mut xs: Vec<(f64, Raw)> = list
-                        .iter()
-                        .map(|r| ((r.p - pa).dot(d) / d.length_squared().max(f64::MIN_POSITIVE), *r))
-                        .collect();
-                    xs.sort_by(|x, y| x.0.total_cmp(&y.0));
-                    for (_, mut r) in xs {
-                        r.node = true;
-                        *crossings += 1;
-                        samples.push(r);
-                    }
-                }
-            }
-            let name = format!("boundary #{}", loops.len());
-            loops.push(Traced { plane: None, samples, closed: true, boundary: true, name, cut: false });
-        }
-    }
-    loops
-}
-
-/// The mesh's boundary edges in a uniform grid of cell size `h`.
-struct BoundaryGrid {
-    h: f64,
-    cells: HashMap<(i64, i64, i64), Vec<(u32, u32)>>,
-}
-
-impl BoundaryGrid {
-    fn new(positions: &[DVec3], edge_faces: &HashMap<(u32, u32), Vec<usize>>, h: f64) -> Self {
-        let h = h.max(f64::MIN_POSITIVE);
-        let mut cells: HashMap<(i64, i64, i64), Vec<(u32, u32)>> = HashMap::new();
-        let cell = |p: DVec3| ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
-        for (e, fs) in edge_faces {
-            if fs.len() != 1 {
-                continue;
-            }
-            let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
-            let (lo, hi) = (cell(a.min(b)), cell(a.max(b)));
-            if (hi.0 - lo.0 + 1) * (hi.1 - lo.1 + 1) * (hi.2 - lo.2 + 1) > 4096 {
-                continue;
-            }
-            for x in lo.0..=hi.0 {
-                for y in lo.1..=hi.1 {
-                    for z in lo.2..=hi.2 {
-                        cells.entry((x, y, z)).or_default().push(*e);
-                    }
-                }
-            }
-        }
-        BoundaryGrid { h, cells }
-    }
-
-    /// The closest boundary edge point within the grid's cell size of `p`: (distance, edge, t).
-    fn closest(&self, positions: &[DVec3], p: DVec3) -> Option<(f64, (u32, u32), f64)> {
-        let h = self.h;
-        let c = ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
-        let mut best: Option<(f64, (u32, u32), f64)> = None;
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    for e in self.cells.get(&(c.0 + dx, c.1 + dy, c.2 + dz)).map_or(&[][..], |v| &v[..]) {
-                        let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
-                        let d = b - a;
-                        let t = ((p - a).dot(d) / d.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
-                        let dist = p.distance(a + t * d);
-                        if dist <= h && best.is_none_or(|x| dist < x.0) {
-                            best = Some((dist, *e, t));
-                        }
-                    }
-                }
-            }
-        }
-        best
-    }
-}
-
-/// A section that ends on the mesh boundary but runs along it first (closer than `band` to
-/// it) would be snapped onto the boundary curve over that stretch by the pipeline: its first
-/// samples within the band are removed and the section ends instead at the boundary point
-/// closest to its first sample outside the band (a short link across to the boundary), if
-/// that point is on the same boundary loop (`on_same_loop`).
-/// Returns the boundary edge of the new end, or `None` when nothing was cut.
-fn trim_along(
-    samples: &mut Vec<Raw>,
-    grid: &BoundaryGrid,
-    band: f64,
-    positions: &[DVec3],
-    normals: &[DVec3],
-    on_same_loop: &dyn Fn((u32, u32)) -> bool,
-) -> Option<(u32, u32)> {
-    // The end point itself is on the boundary; look at the following samples.
-    let mut k = 1;
-    while k < samples.len() && grid.closest(positions, samples[k].p).is_some_and(|c| c.0 < band) {
-        k += 1;
-    }
-    // Leaves the band within 2.5 band widths of arc: a fair crossing (≥ 24°), keep it.
-    let arc: f64 = (1..k.min(samples.len())).map(|i| samples[i].p.distance(samples[i - 1].p)).sum();
-    if arc <= 2.5 * band || k >= samples.len() {
-        if k >= samples.len() {
-            samples.clear();
-        }
-        return None;
-    }
-    let (_, e, t) = grid.closest(positions, samples[k - 1].p)?;
-    // Across to another boundary loop would span a hole: keep the section as it is.
-    if !on_same_loop(e) {
-        return None;
-    }
-    let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
-    let n = normals[e.0 as usize].lerp(normals[e.1 as usize], t);
-    let end = Raw { p: a.lerp(b, t), n, node: false };
-    samples.drain(0..k - 1);
-    samples[0] = end;
-    Some(e)
-}
-
-/// Cuts a traced section at `spots`: around each spot, the samples within `gap` of it (at
-/// least the nearest one) are removed, and on either side the samples up to the nearest node
-/// (a crossing, or an end on the boundary), which is kept as the end of the piece there.
-/// Returns the pieces left (open, flagged `cut`), named after the section with a suffix;
-/// pieces shorter than `gap / 2` are left out.
-fn cut_at_spots(t: Traced, spots: &[DVec3], gap: f64) -> Vec<Traced> {
-    let m = t.samples.len();
-    let mut remove = vec![false; m];
-    let step = |k: usize, forward: bool| -> Option<usize> {
-        match (forward, t.closed) {
-            (true, true) => Some((k + 1) % m),
-            (false, true) => Some((k + m - 1) % m),
-            (true, false) => (k + 1 < m).then_some(k + 1),
-            (false, false) => k.checked_sub(1),
-        }
-    };
-    for &spot in spots {
-        let Some(i) = (0..m)
-            .min_by(|&a, &b| t.samples[a].p.distance_squared(spot).total_cmp(&t.samples[b].p.distance_squared(spot)))
-        else {
-            continue;
-        };
-        remove[i] = true;
-        for forward in [true, false] {
-            // The run within `gap` of the spot, then on to the next node.
-            let mut k = i;
-            let mut in_run = true;
-            for _ in 0..m {
-                let Some(next) = step(k, forward) else { break };
-                if remove[next] && next == i {
-                    break;
-                }
-                in_run = in_run && t.samples[next].p.distance(spot) <= gap;
-                if !in_run && t.samples[next].node {
-                    break;
-                }
-                remove[next] = true;
-                k = next;
-            }
-        }
-    }
-    // Runs of kept samples; a closed section starts after a removed sample.
-    let start = if t.closed { (0..m).find(|&k| remove[k]).map_or(0, |k| (k + 1) % m) } else { 0 };
-    let mut runs: Vec<Vec<Raw>> = Vec::new();
-    let mut current: Vec<Raw> = Vec::new();
-    for j in 0..m {
-        let k = (start + j) % m;
-        if remove[k] {
-            if !current.is_empty() {
-                runs.push(std::mem::take(&mut current));
-            }
-        } else {
-            current.push(t.samples[k]);
-        }
-    }
-    if !current.is_empty() {
-        runs.push(current);
-    }
-    if remove.iter().all(|&r| !r) {
-        return vec![t];
-    }
-    runs.into_iter()
-        .filter(|r| r.len() >= 2 && r.windows(2).map(|w| w[0].p.distance(w[1].p)).sum::<f64>() >= 0.5 * gap)
-        .enumerate()
-        .map(|(k, samples)| Traced {
-            plane: t.plane,
-            samples,
-            closed: false,
-            boundary: t.boundary,
-            name: format!("{}.{}", t.name, k + 1),
-            cut: true,
-        })
-        .collect()
-}
-
-/// Points of a polyline (`pts`, closed or open) where it turns within the surface (about its
-/// normal) by more than `limit_deg` between the directions to the samples `reach` behind and
-/// ahead; of turns closer than `reach`, the sharpest.
-fn sharp_turns(pts: &[Raw], closed: bool, reach: f64, limit_deg: f64) -> Vec<DVec3> {
-    let m = pts.len();
-    let find = |i: usize, step: isize| -> Option<DVec3> {
-        let mut j = i as isize;
-        for _ in 0..m {
-            j += step;
-            let jj = if closed {
-                j.rem_euclid(m as isize) as usize
-            } else if j < 0 || j >= m as isize {
-                return None;
-            } else {
-                j as usize
-            };
-            if pts[jj].p.distance(pts[i].p) >= reach {
-                return Some(pts[jj].p);
-            }
-        }
-        None
-    };
-    let mut turn = vec![0.0; m];
-    for i in 0..m {
-        let (Some(b), Some(a)) = (find(i, -1), find(i, 1)) else { continue };
-        let n = pts[i].n.normalize_or_zero();
-        let flat = |v: DVec3| v - n * v.dot(n);
-        let (u, v) = (flat(pts[i].p - b), flat(a - pts[i].p));
-        turn[i] = u.cross(v).dot(n).atan2(u.dot(v)).abs().to_degrees();
-    }
-    (0..m)
-        .filter(|&i| {
-            turn[i] > limit_deg && (0..m).all(|j| j == i || !(turn[j] > turn[i] && pts[j].p.distance(pts[i].p) < reach))
-        })
-        .map(|i| pts[i].p)
-        .collect()
-}
-
-/// A closed polyline two of whose non-adjacent edges come within `tol` of each other.
-fn thin_loop(points: &[DVec3], tol: f64) -> bool {
-    let m = points.len();
-    (0..m).any(|i| {
-        (i + 2..m).any(|j| {
-            if (j + 1) % m == i {
-                return false;
-            }
-            let (s, t) = crate::geom::closest_params_segment_segment(
-                points[i],
-                points[(i + 1) % m],
-                points[j],
-                points[(j + 1) % m],
-            );
-            points[i].lerp(points[(i + 1) % m], s).distance(points[j].lerp(points[(j + 1) % m], t)) <= tol
-        })
-    })
-}
-
-/// Cuts hairpins off a resampled curve: where the curve comes back within `tol` of itself
-/// after a few samples (a narrow notch of the mesh boundary, a thin fin cut by a plane), the
-/// samples in between are removed, so that the curve does not run alongside itself (the
-/// pipeline would take it for an overlap). Returns the number of hairpins cut.
-pub fn remove_hairpins(points: &mut Vec<DVec3>, normals: &mut Vec<DVec3>, closed: bool, tol: f64) -> usize {
-    const REACH: usize = 12;
-    let mut cut = 0;
-    let mut i = 0;
-    while i < points.len() {
-        let m = points.len();
-        if m <= REACH + 3 {
-            break;
-        }
-        let last = if closed { i + REACH } else { (i + REACH).min(m - 1) };
-        // Segment (i, i+1) against segment (j, j+1), j ≥ i + 2: close → drop i+1 ..= j.
-        let seg_dist = |j: usize| {
-            let (a0, a1) = (points[i], points[(i + 1) % m]);
-            let (b0, b1) = (points[j % m], points[(j + 1) % m]);
-            let (s, t) = crate::geom::closest_params_segment_segment(a0, a1, b0, b1);
-            a0.lerp(a1, s).distance(b0.lerp(b1, t))
-        };
-        let top = if closed { last } else { last.min(m - 2) };
-        let far = (i + 2..=top).filter(|&j| seg_dist(j) <= tol).max();
-        if let Some(j) = far {
-            // Remove samples i+1 ..= j (cyclically).
-            let remove: Vec<usize> = (i + 1..=j).map(|k| k % m).collect();
-            if remove.len() + 3 > m {
-                break;
-            }
-            let mut keep = vec![true; m];
-            for k in remove {
-                keep[k] = false;
-            }
-            let before = keep[..i].iter().filter(|&&k| !k).count();
-            let mut it = keep.iter();
-            points.retain(|_| *it.next().unwrap_or(&true));
-            let mut it = keep.iter();
-            normals.retain(|_| *it.next().unwrap_or(&true));
-            i -= before;
-            cut += 1;
-            continue;
-        }
-        i += 1;
-    }
-    cut
-}
-
-/// Turning angle within the surface (degrees, about the normal, over half a sample spacing on
-/// either side) above which a section is cut ([`SampleReport::sharp_turns`]).
-pub const SHARP_TURN_DEG: f64 = 90.0;
-
-/// Turning angle (degrees) above which a polyline sample is a corner (a sharp edge of the
-/// mesh crossed by the section) and is kept through resampling: a chord across it would cut
-/// the corner and come close to the curves on the other side of the edge.
-pub const CORNER_DEG: f64 = 30.0;
-
-/// Corner samples of `pts` (open polyline; a closed one repeats its first sample at the end):
-/// the turning angle between the directions to the samples at least `reach` behind and ahead
-/// exceeds [`CORNER_DEG`]; of corners closer than `reach`, the sharpest is kept.
-fn corners(pts: &[Raw], arc: &[f64], closed: bool, reach: f64) -> Vec<bool> {
-    let m = pts.len();
-    let total = arc[m - 1];
-    let mut angle = vec![0.0; m];
-    let cos_max = CORNER_DEG.to_radians().cos();
-    for i in 0..m {
-        if !closed && (i == 0 || i == m - 1) {
-            continue;
-        }
-        if closed && total < 4.0 * reach {
-            break;
-        }
-        let find = |step: isize| -> Option<DVec3> {
-            let mut j = i as isize;
-            for _ in 0..m {
-                j += step;
-                let jj =
-                    if closed { j.rem_euclid(m as isize - 1) as usize } else { j.clamp(0, m as isize - 1) as usize };
-                if pts[jj].p.distance(pts[i].p) >= reach {
-                    return Some(pts[jj].p);
-                }
-                if !closed && (jj == 0 || jj == m - 1) {
-                    return None;
-                }
-            }
-            None
-        };
-        if let (Some(b), Some(a)) = (find(-1), find(1)) {
-            let (u, v) = ((pts[i].p - b).normalize_or_zero(), (a - pts[i].p).normalize_or_zero());
-            let c = u.dot(v);
-            if c < cos_max {
-                angle[i] = c.clamp(-1.0, 1.0).acos();
-            }
-        }
-    }
-    // Keep local maxima within `reach`.
-    let mut out = vec![false; m];
-    for i in 0..m {
-        if angle[i] == 0.0 {
-            continue;
-        }
-        let mut best = true;
-        for j in 0..m {
-            if j != i && angle[j] > angle[i] && pts[j].p.distance(pts[i].p) < reach {
-                best = false;
-                break;
-            }
-        }
-        out[i] = best;
-    }
-    out
-}
-
-/// Resamples a polyline at about `spacing` by arc length (positions on the polyline, so on
-/// the mesh; normals interpolated linearly and normalised). Corner samples ([`corners`]), the
-/// ends of an open curve and, with `keep_nodes`, the node samples are kept, and each stretch
-/// between two kept samples is split evenly. Without `keep_nodes` the crossings are not
-/// samples (a closed curve without corners starts half a step from its first node).
-fn resample(raw: &[Raw], closed: bool, spacing: f64, keep_nodes: bool) -> (Vec<DVec3>, Vec<DVec3>) {
-    let mut pts: Vec<Raw> = raw.to_vec();
-    if closed {
-        pts.push(pts[0]);
-    }
-    let arc_of = |pts: &[Raw]| {
-        let mut arc = vec![0.0; pts.len()];
-        for i in 1..pts.len() {
-            arc[i] = arc[i - 1] + pts[i].p.distance(pts[i - 1].p);
-        }
-        arc
-    };
-    let reach = 0.3 * spacing;
-    let mut corner = corners(&pts, &arc_of(&pts), closed, reach);
-    // A corner next to a kept node would make a tiny edge: the node is enough.
-    if keep_nodes {
-        for i in 0..pts.len() {
-            if corner[i] && pts.iter().any(|r| r.node && r.p.distance(pts[i].p) < reach) {
-                corner[i] = false;
-            }
-        }
-    }
-    let fixed_flag: Vec<bool> = (0..pts.len()).map(|i| corner[i] || (keep_nodes && pts[i].node)).collect();
-    // A closed curve starts at a kept sample, or at a node (then shifted by half a step).
-    let mut shift = false;
-    if closed {
-        pts.pop();
-        let mut flags = fixed_flag[..pts.len()].to_vec();
-        let start = flags.iter().position(|&f| f).or_else(|| {
-            shift = true;
-            pts.iter().position(|r| r.node)
-        });
-        if let Some(k) = start {
-            pts.rotate_left(k);
-            flags.rotate_left(k);
-        }
-        pts.push(pts[0]);
-        flags[0] = true;
-        flags.push(true);
-        return finish(&pts, &arc_of(&pts), &flags, closed, spacing, shift);
-    }
-    let mut flags = fixed_flag;
-    let m = flags.len();
-    flags[0] = true;
-    flags[m - 1] = true;
-    finish(&pts, &arc_of(&pts), &flags, closed, spacing, false)
-}
-
-/// Splits each stretch between two `fixed` samples evenly at about `spacing`; with `shift`
-/// (a closed curve with one stretch) the samples are moved by half a step.
-fn finish(
-    pts: &[Raw],
-    arc: &[f64],
-    fixed: &[bool],
-    closed: bool,
-    spacing: f64,
-    shift: bool,
-) -> (Vec<DVec3>, Vec<DVec3>) {
-    let m = pts.len();
-    let at = |s: f64| -> (DVec3, DVec3) {
-        let k = arc.partition_point(|&a| a <= s).clamp(1, m - 1) - 1;
-        let len = arc[k + 1] - arc[k];
-        let t = if len > 0.0 { ((s - arc[k]) / len).clamp(0.0, 1.0) } else { 0.0 };
-        (pts[k].p.lerp(pts[k + 1].p, t), pts[k].n.lerp(pts[k + 1].n, t))
-    };
-    let mut out_p = Vec::new();
-    let mut out_n = Vec::new();
-    let mut push = |(p, n): (DVec3, DVec3)| {
-        out_p.push(p);
-        out_n.push(n.normalize_or_zero());
-    };
-    let idx: Vec<usize> = (0..m).filter(|&i| fixed[i]).collect();
-    if shift && idx.len() == 2 {
-        let total = arc[m - 1];
-        let k = (total / spacing).round().max(3.0) as usize;
-        for j in 0..k {
-            push(at((total * (j as f64 + 0.5) / k as f64).min(total)));
-        }
-        return (out_p, out_n);
-    }
-    for w in idx.windows(2) {
-        let (s0, s1) = (arc[w[0]], arc[w[1]]);
-        if s1 - s0 <= 0.0 {
-            continue;
-        }
-        let k = ((s1 - s0) / spacing).round().max(1.0) as usize;
-        push((pts[w[0]].p, pts[w[0]].n));
-        for j in 1..k {
-            push(at(s0 + (s1 - s0) * j as f64 / k as f64));
-        }
-    }
-    if !closed {
-        push((pts[m - 1].p, pts[m - 1].n));
-    }
-    (out_p, out_n)
 }
 
 #[cfg(test)]

@@ -1,4 +1,5 @@
 use super::*;
+use crate::network::Curve;
 use std::f64::consts::PI;
 
 /// A UV sphere of radius 1 (`rings` latitude bands, `2 rings` longitudes), counter-clockwise
@@ -31,6 +32,31 @@ pub(crate) fn uv_sphere(rings: usize, z_cut: Option<f64>) -> (Vec<DVec3>, Vec<[u
         f.retain(|t| t.iter().all(|&v| p[v as usize].z > z - 1e-12));
     }
     (p, f)
+}
+
+/// The unit cube `[0, 1]³` as 12 triangles, counter-clockwise seen from outside.
+pub(crate) fn unit_cube() -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let p: Vec<DVec3> = (0..8).map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, (i >> 2) as f64)).collect();
+    let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    let f = quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
+    (p, f)
+}
+
+/// The square `[0, 1]² × {0}` as two triangles, counter-clockwise seen from `+z`: vertices
+/// (0,0), (1,0), (1,1), (0,1).
+pub(crate) fn unit_square() -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let p = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+    (p, vec![[0, 1, 2], [0, 2, 3]])
+}
+
+/// A polyline sample (normal `+z`).
+pub(crate) fn raw(x: f64, y: f64, node: bool) -> Raw {
+    Raw { p: DVec3::new(x, y, 0.0), n: DVec3::Z, node }
+}
+
+/// A traced section through `samples`.
+pub(crate) fn traced(samples: Vec<Raw>, closed: bool) -> Traced {
+    Traced { plane: Some(0), samples, closed, boundary: false, name: "s".into(), cut: false }
 }
 
 #[test]
@@ -103,23 +129,6 @@ fn a_cap_gives_a_boundary_loop_with_the_section_ends_on_it() {
 }
 
 #[test]
-fn a_pinch_vertex_is_split_into_one_vertex_per_fan() {
-    // Two triangles that share only vertex 0.
-    let mut p = vec![
-        DVec3::ZERO,
-        DVec3::new(1.0, 0.0, 0.0),
-        DVec3::new(1.0, 1.0, 0.0),
-        DVec3::new(-1.0, 0.0, 0.0),
-        DVec3::new(-1.0, -1.0, 0.0),
-    ];
-    let mut f = vec![[0, 1, 2], [0, 3, 4]];
-    assert_eq!(split_pinches(&mut p, &mut f, 0.1), 1);
-    assert_eq!(p.len(), 6);
-    assert_ne!(f[0][0], f[1][0]);
-    assert!(p[f[0][0] as usize].distance(p[f[1][0] as usize]) > 0.15);
-}
-
-#[test]
 fn bad_meshes_and_options_are_errors() {
     let (p, f) = uv_sphere(10, None);
     assert!(matches!(sample_mesh(&p, &[], &SampleOptions::default()), Err(Error::Input { .. })));
@@ -139,39 +148,43 @@ fn bad_meshes_and_options_are_errors() {
     assert!(matches!(sample_mesh(&p, &f, &o), Err(Error::Topology { .. })));
 }
 
-/// Issue 5: a section in a bad spot loses only the stretch around it, up to the nearest node
-/// (crossing or boundary end) on either side, which end the pieces left.
 #[test]
-fn a_section_is_cut_at_a_bad_spot_between_the_nodes_around_it() {
-    // Samples at x = 0..10; nodes at 0 (boundary end), 3, 6 and 10 (boundary end).
-    let samples: Vec<Raw> = (0..=10)
-        .map(|i| Raw { p: DVec3::new(i as f64, 0.0, 0.0), n: DVec3::Z, node: matches!(i, 0 | 3 | 6 | 10) })
-        .collect();
-    let t = |closed| Traced {
-        plane: Some(0),
-        samples: samples.clone(),
-        closed,
-        boundary: false,
-        name: "s".into(),
-        cut: false,
+fn usage_errors_name_the_options_in_backticks_and_mesh_errors_their_vertex() {
+    let (p, f) = unit_cube();
+    let message = |o: SampleOptions| match sample_mesh(&p, &f, &o) {
+        Err(e @ Error::Usage { .. }) => e.to_string(),
+        other => panic!("expected a usage error, got {other:?}"),
     };
-    let xs = |t: &Traced| t.samples.iter().map(|r| r.p.x).collect::<Vec<_>>();
-    // A spot near x = 4.4 (within 0.5 of sample 4 only): samples 4 and 5 go, the pieces end at
-    // the crossings at 3 and 6.
-    let pieces = cut_at_spots(t(false), &[DVec3::new(4.4, 0.1, 0.0)], 0.5);
-    assert_eq!(
-        pieces.iter().map(xs).collect::<Vec<_>>(),
-        vec![vec![0.0, 1.0, 2.0, 3.0], vec![6.0, 7.0, 8.0, 9.0, 10.0]]
-    );
-    assert!(pieces.iter().all(|p| p.cut && !p.closed && p.samples[0].node && p.samples[p.samples.len() - 1].node));
-    // A spot on the crossing at 6 itself: it goes too, and with it the stretch up to the end
-    // at 10 (a single sample is no piece); the piece left ends at 3.
-    let pieces = cut_at_spots(t(false), &[DVec3::new(6.0, 0.0, 0.0)], 0.5);
-    assert_eq!(pieces.iter().map(xs).collect::<Vec<_>>(), vec![vec![0.0, 1.0, 2.0, 3.0]]);
-    // An end cut back (gap 0): up to the first crossing.
-    let pieces = cut_at_spots(t(false), &[DVec3::new(10.0, 0.0, 0.0)], 0.0);
-    assert_eq!(pieces.iter().map(xs).collect::<Vec<_>>(), vec![vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0]]);
-    // A closed section opens at the spot: one piece from 6 round to 3.
-    let pieces = cut_at_spots(t(true), &[DVec3::new(4.4, 0.1, 0.0)], 0.5);
-    assert_eq!(pieces.iter().map(xs).collect::<Vec<_>>(), vec![vec![6.0, 7.0, 8.0, 9.0, 10.0, 0.0, 1.0, 2.0, 3.0]]);
+    assert!(message(SampleOptions { spacing: Some(0.0), ..Default::default() }).contains("`spacing`"));
+    assert!(message(SampleOptions { spacing: Some(1e-9), ..Default::default() }).contains("`spacing`"));
+    assert!(message(SampleOptions { planes: [0; 3], ..Default::default() }).contains("`planes`"));
+    assert!(message(SampleOptions { tilt: f64::INFINITY, ..Default::default() }).contains("`tilt`"));
+    assert!(message(SampleOptions { noise: -1.0, ..Default::default() }).contains("`noise`"));
+    let mut q = p.clone();
+    q[5].y = f64::NAN;
+    let e = sample_mesh(&q, &f, &SampleOptions::default()).unwrap_err();
+    assert_eq!(e.at().vertex, Some(5), "{e}");
+    // Three faces on the edge 0–1 (a fin added to the cube).
+    let mut q = p.clone();
+    q.push(DVec3::new(0.5, -1.0, 0.5));
+    let mut g = f.clone();
+    g.push([0, 8, 1]);
+    let e = sample_mesh(&q, &g, &SampleOptions::default()).unwrap_err();
+    assert!(matches!(e, Error::Input { .. }) && e.to_string().contains("2-manifold"), "{e}");
+    assert!(matches!(e.at().vertex, Some(0 | 1)), "{e}");
+}
+
+#[test]
+fn principal_curves_on_a_sphere_cross_and_lie_on_the_mesh() {
+    let (p, f) = uv_sphere(40, None);
+    let opts = SampleOptions { planes: [3, 3, 3], curves: CurveFamily::Principal, ..Default::default() };
+    let (net, rep) = sample_mesh(&p, &f, &opts).unwrap();
+    assert!(rep.crossings > 10 && rep.sections >= 4, "{rep:?}");
+    assert_eq!(rep.trimmed, 0);
+    for c in &net.curves {
+        assert!(c.name.as_deref().is_some_and(|n| n.starts_with("principal #")), "{:?}", c.name);
+        for q in &c.points {
+            assert!((q.length() - 1.0).abs() < 2.5e-3, "{q}");
+        }
+    }
 }
