@@ -62,8 +62,8 @@ fn inflate_svg(name: &str, svg: &str) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
     let mut lines = text.lines().skip(1);
     let counts: Vec<usize> = lines.next().unwrap().split_whitespace().map(|x| x.parse().unwrap()).collect();
     let nums = |l: &str| l.split_whitespace().map(|x| x.parse::<f64>().unwrap()).collect::<Vec<f64>>();
-    let vertices = lines.by_ref().take(counts[0]).map(|l| nums(l)).map(|v| [v[0], v[1], v[2]]).collect();
-    let faces = lines.take(counts[1]).map(|l| nums(l)).map(|f| [f[1] as usize, f[2] as usize, f[3] as usize]).collect();
+    let vertices = lines.by_ref().take(counts[0]).map(nums).map(|v| [v[0], v[1], v[2]]).collect();
+    let faces = lines.take(counts[1]).map(nums).map(|f| [f[1] as usize, f[2] as usize, f[3] as usize]).collect();
     (vertices, faces)
 }
 

@@ -1,17 +1,17 @@
-//! Sketch inflation ([A11] §5): the outlines of an SVG sketch are sampled, the region inside
+//! Sketch inflation (\[A11\] §5): the outlines of an SVG sketch are sampled, the region inside
 //! the outermost closed outline triangulated (constrained Delaunay with quality refinement,
-//! spade — [A11] used Triangle), and inflated by the order-k system with Cauchy constraints on
+//! spade — \[A11\] used Triangle), and inflated by the order-k system with Cauchy constraints on
 //! the outline.
 //!
 //! - **Outline** (the closed path of largest area; every other path must lie inside it): Cauchy
 //!   constraints whose orientation is the sketch normal `+z` tilted outwards by `angle`
 //!   (default 90°: a balloon whose rim leaves the plane vertically), with the sketch plane as
-//!   the initial domain (`O` of [A11] eq. 3 rotates `+z` onto the orientation).
+//!   the initial domain (`O` of \[A11\] eq. 3 rotates `+z` onto the orientation).
 //! - **Inner paths**: inactive constraints by default (they ride on the inflated surface,
-//!   [A11] §5.1). A path with `class="crease"` (or `data-kind="crease"`) is then *activated*:
+//!   \[A11\] §5.1). A path with `class="crease"` (or `data-kind="crease"`) is then *activated*:
 //!   fixed where the inflated surface carried it, oriented by that surface's normal, with the
 //!   sharpness `data-sharpness` (degrees; default [`InflateOptions::crease_sharpness`]; > 0 a
-//!   ridge, < 0 a valley), and the surface solved again — the workflow of [A11] Fig. 5.
+//!   ridge, < 0 a valley), and the surface solved again — the workflow of \[A11\] Fig. 5.
 
 use super::svg::SketchPath;
 use crate::error::{Error, Result};
@@ -25,7 +25,7 @@ use spade::{AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementPara
 /// Options of [`inflate`] (one per `curvenet inflate` flag).
 #[derive(Clone, Debug, PartialEq)]
 pub struct InflateOptions {
-    /// Laplacian order `k` (1–3). Default 2 ([A11] §5 used `k = 2`).
+    /// Laplacian order `k` (1–3). Default 2 (\[A11\] §5 used `k = 2`).
     pub order: usize,
     /// Tilt of the outline's orientation out of the sketch plane, degrees (90: vertical rim).
     pub angle: f64,
@@ -56,7 +56,10 @@ impl Default for InflateOptions {
 /// An inflated sketch.
 #[derive(Clone, Debug)]
 pub struct Inflated {
+    /// Vertex positions: x, y in the sketch's user units (y up, as [`SketchPath::points`]), z the
+    /// height above the sketch plane.
     pub positions: Vec<DVec3>,
+    /// Triangles, counter-clockwise seen from above.
     pub faces: Vec<[u32; 3]>,
     /// Per vertex: on a sketch path.
     pub on_path: Vec<bool>,
@@ -130,7 +133,7 @@ pub fn inflate(paths: &[SketchPath], o: &InflateOptions) -> Result<Inflated> {
     let stencil = Stencil::from_operators(&ops, positions.clone());
     let mut constraints = outline_constraints(&sampled, &planar.index, &positions, o);
     let mut result = solve(&stencil, &positions, &constraints, &positions, o)?;
-    // Activate the creases on the inflated surface ([A11] §5.1).
+    // Activate the creases on the inflated surface (\[A11\] §5.1).
     let creases = activate_creases(&sampled, &planar.index, &mesh.faces, &result, &mut constraints);
     if creases > 0 {
         result = solve(&stencil, &positions, &constraints, &result, o)?;
@@ -181,7 +184,7 @@ fn find_outline(paths: &[SketchPath]) -> Result<Outline> {
         points.reverse();
     }
     let area = polygon_signed_area(&points);
-    if !(area > 0.0) {
+    if area.is_nan() || area <= 0.0 {
         return Err(Error::input(format!("line {}: the outline encloses no area", paths[index].line)));
     }
     Ok(Outline { index, points, area })
@@ -426,7 +429,7 @@ fn solve(
     system.solve_with_updates(&f, fixed, &offsets, o.ghost_updates)
 }
 
-/// Activates the crease paths on the inflated surface `result` ([A11] §5.1): each crease
+/// Activates the crease paths on the inflated surface `result` (\[A11\] §5.1): each crease
 /// vertex not already constrained is fixed where it is, oriented by the surface's normal there,
 /// with the path's sharpness. Returns the number of crease paths.
 fn activate_creases(

@@ -1,4 +1,4 @@
-//! The SVG reader of sketches ([A11] §5): the strokes of a drawing, each flattened to a polyline
+//! The SVG reader of sketches (\[A11\] §5): the strokes of a drawing, each flattened to a polyline
 //! in the root element's user units (y axis flipped up), with its `class` and `data-*`
 //! attributes. The XML is parsed by `roxmltree`; path data, transforms, lengths and number lists
 //! by `svgtypes`.
@@ -410,7 +410,8 @@ impl<'a, 'i> Reader<'a, 'i> {
     fn shape(&mut self, node: Node, m: Affine) -> Result<()> {
         let stretch = m.stretch();
         // Chords of `step` in the root: shorter in the element's own units when it is enlarged.
-        let step = if m == Affine::IDENTITY || !(stretch > 0.0) { self.step } else { self.step / stretch };
+        let step =
+            if m == Affine::IDENTITY || stretch.is_nan() || stretch <= 0.0 { self.step } else { self.step / stretch };
         let mut pen = Pen::new(self.points_left);
         match name(node) {
             "path" => self.path(node, step, &mut pen)?,

@@ -369,3 +369,42 @@ fn lines_and_columns_from_the_table() {
     assert_eq!(l.at(9), (4, 1));
     assert_eq!(l.at(100), (4, 2));
 }
+
+#[test]
+fn mutated_inputs_never_panic() {
+    // A deterministic stand-in for the fuzz target: bytes of valid sketches replaced, inserted
+    // or deleted (a small LCG), every result Ok with finite points or an Err.
+    let seeds = [
+        include_str!("../../../../../examples/sketches/leaf.svg"),
+        r##"<svg xmlns:xlink="http://www.w3.org/1999/xlink"><defs><path id="p" d="M 0 0 A 5 3 30 1 0 10 10 Q 1 2 3 4 T 5 6 z"/></defs>
+<g transform="rotate(30 5 5) skewY(10)"><use xlink:href="#p" x="1in" y="2"/><rect x="1" y="1" width="8" height="5" rx="2"/>
+<ellipse cx="3" cy="3" rx="1" ry="2"/><polyline points="0,0 1,1 2,0"/><line x1="0" x2="3" y1="1" y2="1"/></g></svg>"##,
+    ];
+    let alphabet = b" <>/=\"'#-.,0123456789eEmMlLhHvVcCsSqQtTaAzZ()gusvdrx\xc3\xa9";
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (state >> 33) as usize
+    };
+    for round in 0..20_000 {
+        let mut bytes = seeds[round % seeds.len()].as_bytes().to_vec();
+        for _ in 0..1 + next() % 4 {
+            let at = next() % bytes.len().max(1);
+            let b = alphabet[next() % alphabet.len()];
+            match next() % 3 {
+                0 if at < bytes.len() => bytes[at] = b,
+                1 => bytes.insert(at.min(bytes.len()), b),
+                _ if at < bytes.len() => {
+                    bytes.remove(at);
+                }
+                _ => {}
+            }
+        }
+        let Ok(text) = std::str::from_utf8(&bytes) else { continue };
+        for step in [f64::INFINITY, 0.5] {
+            if let Ok(paths) = read_svg(text, "t.svg", step) {
+                assert!(paths.iter().all(|p| p.points.len() >= 2 && p.points.iter().all(|q| q.is_finite())), "{text}");
+            }
+        }
+    }
+}
