@@ -19,7 +19,7 @@ fn sketches() -> PathBuf {
 
 #[test]
 fn inflate_bundled_sketches_with_defaults() {
-    for name in ["leaf.svg", "circle.svg"] {
+    for name in ["leaf.svg", "circle.svg", "petals.svg"] {
         let out = tmp(&format!("{name}.ply"));
         let o = bin().arg("inflate").arg(sketches().join(name)).arg("-o").arg(&out).output().unwrap();
         assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
