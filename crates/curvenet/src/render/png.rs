@@ -68,53 +68,22 @@ fn crc32(bytes: &[u8]) -> u32 {
     c ^ 0xFFFF_FFFF
 }
 
-/// Decodes a PNG written by [`encode_rgb`] back to `(width, height, rgb)`; `None` for anything
-/// else. For tests and for tools that check their own renders.
-pub fn decode_rgb(png: &[u8]) -> Option<(u32, u32, Vec<u8>)> {
-    if png.len() < 8 || png[..8] != [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a] {
-        return None;
-    }
-    let (mut pos, mut w, mut h, mut idat) = (8usize, 0u32, 0u32, Vec::new());
-    while pos + 12 <= png.len() {
-        let len = u32::from_be_bytes(png[pos..pos + 4].try_into().ok()?) as usize;
-        let kind = &png[pos + 4..pos + 8];
-        let data = png.get(pos + 8..pos + 8 + len)?;
-        match kind {
-            b"IHDR" => {
-                w = u32::from_be_bytes(data[0..4].try_into().ok()?);
-                h = u32::from_be_bytes(data[4..8].try_into().ok()?);
-                if data[8] != 8 || data[9] != 2 {
-                    return None;
-                }
-            }
-            b"IDAT" => idat.extend_from_slice(data),
-            _ => {}
-        }
-        pos += 12 + len;
-    }
-    let raw = miniz_oxide::inflate::decompress_to_vec_zlib(&idat).ok()?;
-    let stride = w as usize * 3;
-    let mut rgb = vec![0u8; stride * h as usize];
-    for y in 0..h as usize {
-        let line = raw.get(y * (stride + 1)..(y + 1) * (stride + 1))?;
-        let (filter, src) = (line[0], &line[1..]);
-        for i in 0..stride {
-            let left = if i >= 3 { rgb[y * stride + i - 3] } else { 0 };
-            let up = if y > 0 { rgb[(y - 1) * stride + i] } else { 0 };
-            rgb[y * stride + i] = match filter {
-                0 => src[i],
-                1 => src[i].wrapping_add(left),
-                2 => src[i].wrapping_add(up),
-                _ => return None,
-            };
-        }
-    }
-    Some((w, h, rgb))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Decodes an 8-bit RGB PNG with the `png` crate: `(width, height, rgb)`, `None` for
+    /// anything else.
+    fn decode_rgb(bytes: &[u8]) -> Option<(u32, u32, Vec<u8>)> {
+        let mut reader = ::png::Decoder::new(std::io::Cursor::new(bytes)).read_info().ok()?;
+        let mut rgb = vec![0; reader.output_buffer_size()?];
+        let info = reader.next_frame(&mut rgb).ok()?;
+        if (info.color_type, info.bit_depth) != (::png::ColorType::Rgb, ::png::BitDepth::Eight) {
+            return None;
+        }
+        rgb.truncate(info.buffer_size());
+        Some((info.width, info.height, rgb))
+    }
 
     #[test]
     fn crc_of_iend_is_the_known_constant() {
@@ -122,10 +91,19 @@ mod tests {
     }
 
     #[test]
-    fn round_trip() {
-        let (w, h) = (7u32, 5u32);
-        let rgb: Vec<u8> = (0..w * h * 3).map(|i| (i * 37 % 251) as u8).collect();
-        let png = encode_rgb(w, h, &rgb);
-        assert_eq!(decode_rgb(&png), Some((w, h, rgb)));
+    fn round_trip_through_an_independent_decoder() {
+        for (w, h) in [(7u32, 5u32), (1, 1), (300, 2)] {
+            let rgb: Vec<u8> = (0..w * h * 3).map(|i| (i * 37 % 251) as u8).collect();
+            let png = encode_rgb(w, h, &rgb);
+            assert_eq!(decode_rgb(&png), Some((w, h, rgb)));
+        }
+        // Short and long buffers are padded with black or cut.
+        assert_eq!(decode_rgb(&encode_rgb(2, 1, &[9, 9, 9])), Some((2, 1, vec![9, 9, 9, 0, 0, 0])));
+        assert_eq!(decode_rgb(&encode_rgb(1, 1, &[1, 2, 3, 4])), Some((1, 1, vec![1, 2, 3])));
+        // Truncated files are errors of the decoder, not panics.
+        let png = encode_rgb(7, 5, &[0; 105]);
+        for n in [0, 7, 8, 20, 33, png.len() - 13] {
+            assert_eq!(decode_rgb(&png[..n]), None, "{n} bytes");
+        }
     }
 }

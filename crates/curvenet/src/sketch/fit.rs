@@ -1,26 +1,26 @@
-//! Reverse engineering a mesh into Cauchy constraints ([A11] §6).
+//! Reverse engineering a mesh into Cauchy constraints (\[A11\] §6).
 //!
-//! The input mesh is its own initial domain (cotangent weights and areas of the mesh, [A11] §6:
+//! The input mesh is its own initial domain (cotangent weights and areas of the mesh, \[A11\] §6:
 //! "we re-use the existing mesh structure"). Feature vertices come from a dihedral-angle threshold
-//! ([A11] §6, after [GSMCO09]; CAD-like meshes) and become Cauchy constraints; every other vertex
-//! is free. The ghost vertices get the "naive guess" of [A11] §6, per side: the orientation is the
+//! (\[A11\] §6, after \[GSMCO09\]; CAD-like meshes) and become Cauchy constraints; every other vertex
+//! is free. The ghost vertices get the "naive guess" of \[A11\] §6, per side: the orientation is the
 //! normal of the faces on the neighbour's side of `u` (so a sharp edge gets one orientation per
 //! side, i.e. its sharpness), and the ghost is centred on the input (`g₁ = v + 2e`, `e` the edge
 //! `u − v` in that tangent plane; `g₂ = 3g₁ − 3u + v`). Optionally the ghosts are then fitted by
-//! linear least squares, point to point, in the complete setup ([A11] §6.2: every ghost
-//! coordinate a variable), with the ghost basis of [`super::reduce`] and a small Tikhonov pull
+//! linear least squares, point to point, in the complete setup (\[A11\] §6.2: every ghost
+//! coordinate a variable), with the ghost basis of [`crate::methods::andrews2011::reduce`] and a small Tikhonov pull
 //! towards the naive guess.
 //!
 //! Not implemented: ridge/valley feature curves for organic meshes, the point-to-plane metric,
 //! the reduced setup and the greedy reduction of curves (see `docs/cauchy.md`).
 
+use crate::error::{Error, Result};
+use crate::geom::mesh::Mesh;
+use crate::geom::DVec3;
 use crate::methods::andrews2011::reduce::GhostBasis;
 use crate::methods::andrews2011::system::{MicroWeight, Role, Stencil, System};
-use crate::solve::timing::Instant;
-use crate::error::{Error, Result};
-use crate::geom::DVec3;
-use crate::geom::mesh::Mesh;
 use crate::operators::{cotan_operators, Metric};
+use crate::solve::timing::Instant;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
@@ -35,12 +35,12 @@ pub struct FitOptions {
     pub optimize: bool,
     /// For smooth meshes: when `Some(f)`, the feature vertices are instead the fraction `f` of
     /// vertices whose signed mean curvature lies farthest from the median — the crests (ridges)
-    /// and troughs (valleys) of the surface, a cheap stand-in for [OBS04]'s ridge/valley lines.
+    /// and troughs (valleys) of the surface, a cheap stand-in for \[OBS04\]'s ridge/valley lines.
     pub curvature_fraction: Option<f64>,
-    /// Greedy reduction of the feature curves ([A11] §6.1): when `Some(t)`, start from the
+    /// Greedy reduction of the feature curves (\[A11\] §6.1): when `Some(t)`, start from the
     /// border curves and the largest feature curve and add, one at a time, the curve nearest to
     /// the worst vertex until the largest point-to-point error is below `t` times the mesh's
-    /// largest extent divided by 5 ([A11]: 0.1 for a mesh scaled into a 5×5×5 box). A "curve"
+    /// largest extent divided by 5 (\[A11\]: 0.1 for a mesh scaled into a 5×5×5 box). A "curve"
     /// is a connected component of feature vertices.
     pub reduce: Option<f64>,
 }
@@ -55,9 +55,11 @@ impl Default for FitOptions {
 /// [`resurface`]. Serialised as the JSON written by `curvenet fit`.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct CauchyModel {
+    /// Laplacian order `k` of the system (1–3).
     pub order: usize,
     /// Domain vertex positions (the input mesh; Cauchy vertices keep theirs).
     pub positions: Vec<[f64; 3]>,
+    /// Domain triangles.
     pub faces: Vec<[u32; 3]>,
     /// Cauchy constraint vertices.
     pub constraints: Vec<u32>,
@@ -68,17 +70,24 @@ pub struct CauchyModel {
 /// What [`fit`] measured.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct FitReport {
+    /// Vertices of the input mesh.
     pub vertices: usize,
+    /// Vertices on feature curves (the Cauchy constraints).
     pub feature_vertices: usize,
+    /// Ghost vertices of the model.
     pub ghosts: usize,
     /// Largest and RMS distance between each re-surfaced vertex and its input position, and the
     /// same relative to the bounding-box diagonal.
     pub max_distance: f64,
+    /// RMS distance (see `max_distance`).
     pub rms_distance: f64,
+    /// Bounding-box diagonal of the input mesh.
     pub diagonal: f64,
+    /// Wall-clock time of the fit, seconds.
     pub seconds: f64,
     /// Feature curves (connected components) found, and kept by the greedy reduction.
     pub curves: usize,
+    /// Feature curves kept by the greedy reduction (both 0 without `reduce`).
     pub curves_kept: usize,
 }
 
@@ -143,11 +152,9 @@ pub fn curvature_features(positions: &[DVec3], faces: &[[u32; 3]], f: f64) -> Ve
 }
 
 fn stencil_of(positions: &[DVec3], faces: &[[u32; 3]]) -> Result<Stencil> {
-    let mut mesh = Mesh::default();
-    mesh.positions = positions.to_vec();
-    mesh.faces = faces.to_vec();
+    let mesh = Mesh { positions: positions.to_vec(), faces: faces.to_vec(), ..Mesh::default() };
     let ops = cotan_operators(&mesh, Metric::Surface, positions);
-    if let Some(i) = ops.mass.iter().position(|a| !(*a > 0.0)) {
+    if let Some(i) = ops.mass.iter().position(|a| a.is_nan() || *a <= 0.0) {
         return Err(Error::input(format!("vertex {i} has zero area: degenerate or unreferenced")));
     }
     Ok(Stencil::from_operators(&ops, positions.to_vec()))
@@ -258,7 +265,7 @@ fn naive_ghosts(system: &System, positions: &[DVec3], faces: &[[u32; 3]], featur
         .collect()
 }
 
-/// [A11] §6.1, greedy: keeps in `feature` only the curves the reduction selects. Returns the
+/// \[A11\] §6.1, greedy: keeps in `feature` only the curves the reduction selects. Returns the
 /// numbers of curves found and kept.
 fn greedy_reduction(
     positions: &[DVec3],
@@ -341,7 +348,7 @@ fn greedy_reduction(
     }
 }
 
-/// Point-to-point least squares over all ghost coordinates ([A11] §6.2, complete setup):
+/// Point-to-point least squares over all ghost coordinates (\[A11\] §6.2, complete setup):
 /// `min ‖K + W G − X‖² + λ ‖G − G₀‖²` with `λ` 10⁻⁶ of the mean diagonal of `WᵀW`.
 fn least_squares(system: &System, basis: &GhostBasis, positions: &[DVec3], g0: &[DVec3]) -> Result<Vec<DVec3>> {
     use faer::linalg::solvers::Solve;
