@@ -31,6 +31,9 @@
 //! pictures, [`sketch`] inflates SVG sketches and fits meshes with the [A11] system. [`geom`]
 //! (vectors, the triangle mesh) and [`error`] sit under everything.
 
+#![warn(missing_docs)]
+#![deny(rustdoc::broken_intra_doc_links)]
+
 pub mod curves;
 pub mod error;
 pub mod geom;
