@@ -288,7 +288,9 @@ fn result<'py>(py: Python<'py>, s: curvenet::Surface) -> PyResult<Bound<'py, pyo
     let info = PyDict::new(py);
     let stats = serde_json::to_string(&s.stats).map_err(|e| usage(e.to_string()))?;
     info.set_item("stats_json", stats)?;
-    let warnings: Vec<(String, Option<usize>, Option<usize>, Option<usize>, Option<usize>)> =
+    /// `(message, curve, sample, node, patch)` of a warning.
+    type WarningTuple = (String, Option<usize>, Option<usize>, Option<usize>, Option<usize>);
+    let warnings: Vec<WarningTuple> =
         s.warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect();
     info.set_item("warnings", warnings)?;
     info.set_item("num_curve", s.mesh.num_curve)?;

@@ -6,7 +6,7 @@
 use clap::Args;
 use curvenet::io::write_network;
 use curvenet::network::examples;
-use curvenet::{Error};
+use curvenet::Error;
 use std::fmt::Write as _;
 use std::io::Write;
 use std::path::PathBuf;

@@ -1,4 +1,4 @@
-//! `curvenet eval`: measure a mesh against a ground truth ([CG] §4.3, Table 1 and Fig. 5).
+//! `curvenet eval`: measure a mesh against a ground truth (\[CG\] §4.3, Table 1 and Fig. 5).
 
 use clap::Args;
 use curvenet::io::read_network;

@@ -3,7 +3,7 @@
 use clap::Args;
 use curvenet::io::write_network;
 use curvenet::network::examples;
-use curvenet::{Error};
+use curvenet::Error;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -19,7 +19,7 @@ pub struct ExampleArgs {
     #[arg(long)]
     list: bool,
     /// Add sensor-like noise: Gaussian, σ = F × the sample spacing on positions, σ = F on the
-    /// unit normals ([CG] §4.5).
+    /// unit normals (\[CG\] §4.5).
     #[arg(long, value_name = "F")]
     noise: Option<f64>,
     /// Seed of the noise.

@@ -1,5 +1,5 @@
 //! `curvenet study figures`: regenerates `docs/figures/*.png`, the paper-style pictures
-//! ([CG] Fig. 1, 3–5): every method on the sphere and the torus in curvature and isophotes, the
+//! (\[CG\] Fig. 1, 3–5): every method on the sphere and the torus in curvature and isophotes, the
 //! cylinder with three normal sets, and the deviation of the propagated normals.
 
 use clap::Args;

@@ -1,9 +1,9 @@
 //! `curvenet fit` and `curvenet resurface`: reverse engineering a mesh into Cauchy constraints
-//! and solving the fitted model again ([A11] §6; docs/cauchy.md).
+//! and solving the fitted model again (\[A11\] §6; docs/cauchy.md).
 
 use clap::Args;
-use curvenet::sketch::fit::{fit, resurface, CauchyModel, FitOptions};
 use curvenet::io::{check_mesh_path, read_mesh, write_mesh, write_text, MeshData};
+use curvenet::sketch::fit::{fit, resurface, CauchyModel, FitOptions};
 use curvenet::Error;
 use std::io::Write;
 use std::path::PathBuf;
@@ -29,13 +29,13 @@ pub struct FitArgs {
     #[arg(long, value_name = "F")]
     curvature: Option<f64>,
     /// Greedy reduction of the feature curves until the largest error is below T × the mesh's
-    /// largest extent / 5 ([A11] §6.1 uses 0.1).
+    /// largest extent / 5 (\[A11\] §6.1 uses 0.1).
     #[arg(long, value_name = "T")]
     reduce: Option<f64>,
     /// Also write the re-surfaced mesh.
     #[arg(long, value_name = "MESH")]
     surface: Option<PathBuf>,
-    /// Time a fresh factor-and-solve against re-solves through the ghost basis ([A11] §6.2).
+    /// Time a fresh factor-and-solve against re-solves through the ghost basis (\[A11\] §6.2).
     #[arg(long)]
     bench: bool,
     /// Print nothing but errors.
@@ -117,11 +117,16 @@ pub fn run(a: &FitArgs) -> Result<(), Error> {
         m.faces = mesh.faces.clone();
         let ops = curvenet::operators::cotan_operators(&m, curvenet::Metric::Surface, &positions);
         let stencil = curvenet::methods::andrews2011::Stencil::from_operators(&ops, positions.clone());
-        let system =
-            curvenet::methods::andrews2011::System::build(&stencil, &roles, a.order, curvenet::methods::andrews2011::MicroWeight::Consistent)?;
+        let system = curvenet::methods::andrews2011::System::build(
+            &stencil,
+            &roles,
+            a.order,
+            curvenet::methods::andrews2011::MicroWeight::Consistent,
+        )?;
         let ghosts: Vec<curvenet::geom::DVec3> =
             model.ghosts.iter().map(|(_, p)| curvenet::geom::DVec3::from_array(*p)).collect();
-        let b = curvenet::methods::andrews2011::reduce::bench(&system, &positions, &ghosts, 1e-3 * report.diagonal, 10, 5)?;
+        let b =
+            curvenet::methods::andrews2011::reduce::bench(&system, &positions, &ghosts, 1e-3 * report.diagonal, 10, 5)?;
         out!(
             "re-solve bench: {} unknowns, {} ghosts; fresh LU factor+solve {:.4} s; basis {:.3} s; \
              all ghosts moved (K + W G) {:.4} s = {:.1}x faster; {} ghosts of 10 vertices moved {:.6} s = {:.0}x faster; \

@@ -1,8 +1,8 @@
-//! `curvenet inflate`: an SVG sketch inflated into a surface ([A11] §5; docs/cauchy.md).
+//! `curvenet inflate`: an SVG sketch inflated into a surface (\[A11\] §5; docs/cauchy.md).
 
 use clap::Args;
-use curvenet::sketch::inflate::{inflate, read_sketch, InflateOptions};
 use curvenet::io::{check_mesh_path, write_mesh, MeshData};
+use curvenet::sketch::inflate::{inflate, read_sketch, InflateOptions};
 use curvenet::Error;
 use std::io::Write;
 use std::path::PathBuf;

@@ -65,7 +65,7 @@ enum Command {
     Example(example::ExampleArgs),
     /// Surface the bundled sphere network and report where the result went and how accurate it is.
     Demo(demo::DemoArgs),
-    /// Measure a mesh against a ground truth: distances, normal angles, N* deviation ([CG] §4.3).
+    /// Measure a mesh against a ground truth: distances, normal angles, N* deviation (\[CG\] §4.3).
     #[command(after_help = eval::EVAL_HELP)]
     Eval(eval::EvalArgs),
     /// Build a curve network on a triangle mesh: plane sections with normals from the mesh.

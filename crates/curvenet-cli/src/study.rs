@@ -1,9 +1,9 @@
 //! `curvenet study`: the paper's experiments, run by curvenet itself.
 //!
-//! - `study convergence NETWORK`: [CG] §4.4 (Fig. 6): the spacing halved level by level; per
+//! - `study convergence NETWORK`: \[CG\] §4.4 (Fig. 6): the spacing halved level by level; per
 //!   level the vertex count, the time and the error (to the truth when one is given, and the
 //!   vertex-sampled Hausdorff distance and its RMS to the previous level).
-//! - `study accuracy`: regenerates `docs/accuracy.md`: [CG] Table 1 side by side with every
+//! - `study accuracy`: regenerates `docs/accuracy.md`: \[CG\] Table 1 side by side with every
 //!   method, the convergence and noise studies, the torus with negative mean curvature inside,
 //!   and the cost of the default method against the paper's single pass.
 
@@ -26,11 +26,11 @@ pub struct StudyArgs {
 
 #[derive(Subcommand)]
 enum Study {
-    /// Halve the spacing level by level ([CG] §4.4) and report size, time and error per level.
+    /// Halve the spacing level by level (\[CG\] §4.4) and report size, time and error per level.
     Convergence(ConvergenceArgs),
-    /// Regenerate docs/accuracy.md: [CG] Table 1 side by side, convergence, noise, cost.
+    /// Regenerate docs/accuracy.md: \[CG\] Table 1 side by side, convergence, noise, cost.
     Accuracy(AccuracyArgs),
-    /// Regenerate docs/figures/*.png: every method in curvature and isophotes, [CG] Fig. 1 and 5.
+    /// Regenerate docs/figures/*.png: every method in curvature and isophotes, \[CG\] Fig. 1 and 5.
     Figures(crate::figures::FiguresArgs),
 }
 
@@ -205,7 +205,7 @@ pub(crate) fn machine() -> String {
     format!("{cpu}, {cores} cores, {mem}")
 }
 
-/// The rows of [CG] Table 1: (method, min, max, mean, RMS).
+/// The rows of \[CG\] Table 1: (method, min, max, mean, RMS).
 const PAPER_SPHERE: [(&str, [f64; 4]); 4] = [
     ("[CG] their method", [0.0004, 0.0502, 0.0319, 0.0343]),
     ("[CG] method (4)", [0.0001, 0.3262, 0.1412, 0.1635]),

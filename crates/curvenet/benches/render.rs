@@ -2,9 +2,9 @@
 //! for the sphere and the torus at 20k vertices (one panel per colouring; medians of 7 runs;
 //! encoding the PNG included). The surfacing time is printed beside it for comparison.
 
-use curvenet::render::{render, Coloring, RenderOptions, Scene};
 use curvenet::network::examples;
-use curvenet::{Options};
+use curvenet::render::{render, Coloring, RenderOptions, Scene};
+use curvenet::Options;
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {

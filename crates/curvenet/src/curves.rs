@@ -1,5 +1,5 @@
 //! Cubic splines through the samples of a curve and uniform resampling in arc length
-//! ([CG] §3.3: "the positions pᵢ and normals nᵢ along the curve network are interpolated with
+//! (\[CG\] §3.3: "the positions pᵢ and normals nᵢ along the curve network are interpolated with
 //! cubic splines and resampled with arc length parameterization").
 //!
 //! One spline per curve interpolates the positions and the normals together (a 6-vector per
@@ -76,6 +76,7 @@ impl CurveSpline {
         self.t[self.t.len() - 1]
     }
 
+    /// Whether the curve is periodic (closed).
     pub fn is_closed(&self) -> bool {
         self.closed
     }

@@ -68,8 +68,8 @@ pub enum Error {
     Input {
         /// What is wrong, where, and how to fix it.
         message: String,
-        /// The ids of the place.
-        at: At,
+        /// The ids of the place (boxed: keeps `Result<T, Error>` small).
+        at: Box<At>,
     },
 
     /// The curves do not bound an oriented 2-manifold: a dangling segment, a segment with
@@ -80,7 +80,7 @@ pub enum Error {
         /// What is wrong, where, and how to fix it.
         message: String,
         /// The ids of the place.
-        at: At,
+        at: Box<At>,
     },
 
     /// A file could not be read or written.
@@ -107,7 +107,7 @@ pub enum Error {
         /// What failed and what to try.
         message: String,
         /// The ids of the place.
-        at: At,
+        at: Box<At>,
     },
 
     /// A broken invariant inside curvenet: a bug, not a problem of the input. Please report
@@ -122,17 +122,17 @@ pub enum Error {
 impl Error {
     /// An [`Error::Input`] with `message` (add the ids with [`Error::curve`], …).
     pub fn input(message: impl Into<String>) -> Self {
-        Error::Input { message: message.into(), at: At::default() }
+        Error::Input { message: message.into(), at: Box::default() }
     }
 
     /// An [`Error::Topology`] with `message`.
     pub fn topology(message: impl Into<String>) -> Self {
-        Error::Topology { message: message.into(), at: At::default() }
+        Error::Topology { message: message.into(), at: Box::default() }
     }
 
     /// An [`Error::Numerical`] with `message`.
     pub fn numerical(message: impl Into<String>) -> Self {
-        Error::Numerical { message: message.into(), at: At::default() }
+        Error::Numerical { message: message.into(), at: Box::default() }
     }
 
     /// An [`Error::usage`] with `message`.
@@ -182,7 +182,7 @@ impl Error {
     /// Where the error is (all `None` for kinds without a place, and where unknown).
     pub fn at(&self) -> At {
         match self {
-            Error::Input { at, .. } | Error::Topology { at, .. } | Error::Numerical { at, .. } => *at,
+            Error::Input { at, .. } | Error::Topology { at, .. } | Error::Numerical { at, .. } => **at,
             _ => At::default(),
         }
     }

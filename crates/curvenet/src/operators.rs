@@ -1,4 +1,4 @@
-//! Discrete differential operators on the mesh ([CG] §3.4): the cotangent Laplacian `Ls`, the
+//! Discrete differential operators on the mesh (\[CG\] §3.4): the cotangent Laplacian `Ls`, the
 //! mixed Voronoi mass matrix `M`, vertex normals, and the two mean-curvature estimates — the
 //! cotangent formula and the paper's normal-blended formula (eq. 1).
 //!
@@ -13,8 +13,8 @@ use crate::solve::sparse::Csc;
 /// Where the cotangent weights and areas are measured.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Metric {
-    /// In the plane each patch was triangulated in ([CG] §3.4: "based on the planar
-    /// triangulation"). Not isometric to the surface: a known bias of the paper ([CG] §5).
+    /// In the plane each patch was triangulated in (\[CG\] §3.4: "based on the planar
+    /// triangulation"). Not isometric to the surface: a known bias of the paper (\[CG\] §5).
     #[default]
     Planar,
     /// On the 3D surface given by vertex positions.
@@ -217,7 +217,7 @@ pub fn normals_and_mean_curvature(faces: &[[u32; 3]], positions: &[DVec3], skip:
     (normals, h)
 }
 
-/// The paper's mean-curvature vector ([CG] eq. 1), blending positions `V*` with normals `N*`:
+/// The paper's mean-curvature vector (\[CG\] eq. 1), blending positions `V*` with normals `N*`:
 ///
 /// `h(v) = 1/(4A) Σᵢ (n + nᵢ + nᵢ₊₁)/‖n + nᵢ + nᵢ₊₁‖ × (vᵢ₊₁ − vᵢ)`,
 ///
@@ -226,7 +226,7 @@ pub fn normals_and_mean_curvature(faces: &[[u32; 3]], positions: &[DVec3], skip:
 /// `V*` ([`mixed_areas`]); the returned scalar is the **signed** `H = h · n*(v)` (docs/design.md §1: the
 /// papers' `‖h‖` loses the sign). Vertices in `skip` (open boundary: incomplete ring) get 0.
 ///
-/// Which area to use is a modelling choice: with the planar metric of [CG] §3.4, dividing by
+/// Which area to use is a modelling choice: with the planar metric of \[CG\] §3.4, dividing by
 /// the *planar* Voronoi area (the `M` of the Laplacian) scales `h` by the local area ratio of
 /// the projection, exactly as the planar Laplacian scales `ΔV`, so the fit `L V = −2 H N*`
 /// stays consistent to first order (see [`crate::methods::normal_control`]).

@@ -152,7 +152,7 @@ pub fn surface_into_output(network: &Network, options: &Options) -> Result<(), E
 
 /// Surfaces the network in `ptr[..len]` (`format`: 0 JSON, 1 OBJ, 2 .net) with `method`
 /// (0 normal-control, 1 biharmonic, 2 triharmonic, 3 method (4), 4 short paper, 5 cauchy
-/// ([A11], order 2)), about
+/// (\[A11\], order 2)), about
 /// `vertices` vertices, soft constraints `soft` (≤ 0: hard) and `quality` (0 fast, 1 default).
 /// Warnings go to the text buffer.
 ///

@@ -21,12 +21,12 @@ pub struct Mesh {
     pub curve_normals: Vec<DVec3>,
     /// Per vertex: lies on a boundary curve (an open border of the surface), `#V`.
     pub on_boundary: Vec<bool>,
-    /// Per face: corner coordinates in the plane its patch was triangulated in ([CG] §3.3);
+    /// Per face: corner coordinates in the plane its patch was triangulated in (\[CG\] §3.3);
     /// the paper's cotangent weights come from these. `#F`.
     pub planar: Vec<[DVec2; 3]>,
     /// Per face: index of its patch. `#F`.
     pub face_patch: Vec<u32>,
-    /// Patches whose planar projection folds over ([CG] §3.3): triangulated in the plane of
+    /// Patches whose planar projection folds over (\[CG\] §3.3): triangulated in the plane of
     /// their vector area or on a convex (elliptic) domain instead.
     pub fold_fallback: Vec<usize>,
     /// The Laplacian's sparsity pattern, computed on first use (the faces must not change
@@ -35,10 +35,12 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// Number of vertices, `#V`.
     pub fn num_vertices(&self) -> usize {
         self.positions.len()
     }
 
+    /// Number of free (not curve) vertices.
     pub fn num_free(&self) -> usize {
         self.positions.len() - self.num_curve
     }
@@ -143,6 +145,7 @@ pub struct LaplacianPattern {
 }
 
 impl LaplacianPattern {
+    /// The pattern of `Ls` for `n` vertices and `faces`, with each face's entry positions.
     pub fn new(n: usize, faces: &[[u32; 3]]) -> Self {
         let csc = laplacian_pattern(n, faces);
         let find = |i: usize, j: usize| {

@@ -8,7 +8,9 @@ pub use glam::{DVec2, DVec3};
 /// Axis-aligned bounding box of a point set.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// Smallest coordinates.
     pub min: DVec3,
+    /// Largest coordinates.
     pub max: DVec3,
 }
 
@@ -27,6 +29,7 @@ impl Aabb {
         b
     }
 
+    /// Grows the box to contain `p`.
     pub fn extend(&mut self, p: DVec3) {
         self.min = self.min.min(p);
         self.max = self.max.max(p);
@@ -40,6 +43,7 @@ impl Aabb {
         (self.max - self.min).length()
     }
 
+    /// The centre of the box.
     pub fn center(&self) -> DVec3 {
         0.5 * (self.min + self.max)
     }

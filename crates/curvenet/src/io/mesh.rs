@@ -22,7 +22,7 @@ pub struct MeshData<'a> {
     pub mean_curvature: Option<&'a [f64]>,
     /// `true` for vertices on the input curves, `#V`.
     pub curve_vertex: Option<&'a [bool]>,
-    /// The propagated normals `N*` of normal-control ([CG] Fig. 5 compares them with the
+    /// The propagated normals `N*` of normal-control (\[CG\] Fig. 5 compares them with the
     /// mesh's), `#V`. PLY only (`pnx pny pnz`).
     pub propagated_normals: Option<&'a [DVec3]>,
 }
@@ -30,15 +30,22 @@ pub struct MeshData<'a> {
 /// A mesh read from a file, with whichever attributes the file carried.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct MeshFile {
+    /// Vertex positions, `#V`.
     pub positions: Vec<DVec3>,
+    /// Triangles, `#F`.
     pub faces: Vec<[u32; 3]>,
+    /// Vertex normals, when the file has them.
     pub normals: Option<Vec<DVec3>>,
+    /// Signed mean curvature per vertex (PLY `mean_curvature`).
     pub mean_curvature: Option<Vec<f64>>,
+    /// Per vertex: on a curve (PLY `curve`).
     pub curve_vertex: Option<Vec<bool>>,
+    /// The propagated normals `N*` (PLY `pnx pny pnz`).
     pub propagated_normals: Option<Vec<DVec3>>,
 }
 
 impl MeshFile {
+    /// The mesh and its attributes, for [`crate::io::write_mesh`].
     pub fn as_data(&self) -> MeshData<'_> {
         MeshData {
             positions: &self.positions,

@@ -1,9 +1,9 @@
-//! The energy of the authors' Eurographics 2016 short paper ([EG] §2, "Optimization"): the
+//! The energy of the authors' Eurographics 2016 short paper (\[EG\] §2, "Optimization"): the
 //! bi-Laplacian penalised by the mean-curvature guide, with soft constraints,
 //!
 //! `E(V) = Σ_v A_v ‖Δ²v‖² + ω₁ Σ_v A_v ‖Δv + 2H n*‖² + ω₀ Σ_s ‖v_s − v*_s‖²`,
 //!
-//! area-weighted as in docs/design.md §1 (the [EG] sums are unweighted). In matrix form the first term
+//! area-weighted as in docs/design.md §1 (the \[EG\] sums are unweighted). In matrix form the first term
 //! is `Vᵀ (Ls M⁻¹ Ls M⁻¹ Ls M⁻¹ Ls) V` (a three-ring stencil). `H` and `n*` are the guide of
 //! [`super::normal_control`] (eq. 1 on `V*`, `N*`). Units: the first term scales as length⁻⁴
 //! relative to the second, so `ω₁ = w1 / s⁴` with `s` the mean patch size makes `w1`
@@ -39,7 +39,7 @@ impl Default for ShortPaperOptions {
     }
 }
 
-/// The weights of the [EG] energy, scaled for the mesh (see the module documentation).
+/// The weights of the \[EG\] energy, scaled for the mesh (see the module documentation).
 #[derive(Clone, Copy, Debug)]
 pub struct ShortPaperParams {
     /// `ω₁ = w1 / s⁴`.
@@ -48,7 +48,7 @@ pub struct ShortPaperParams {
     pub omega0: Option<f64>,
 }
 
-/// The [EG] energy as a [`SurfacingMethod`]: keeps the propagation's factorisation and that
+/// The \[EG\] energy as a [`SurfacingMethod`]: keeps the propagation's factorisation and that
 /// of its own system between solves.
 pub struct ShortPaper {
     /// The weights of every solve.
@@ -129,7 +129,7 @@ impl SurfacingMethod for ShortPaper {
     }
 }
 
-/// Minimises the [EG] energy once on `mesh` with the operators `ops`.
+/// Minimises the \[EG\] energy once on `mesh` with the operators `ops`.
 pub fn short_paper(
     mesh: &Mesh,
     ops: &Operators,

@@ -4,7 +4,7 @@
 //! The operators are the library's own ([`crate::operators`]) on the 3D positions: the
 //! cotangent Laplacian `Ls` and the mixed Voronoi mass matrix `M` of Meyer, Desbrun, Schröder
 //! and Barr 2003 (Voronoi areas, half / quarter of the triangle for obtuse ones). The systems
-//! are those of the [`crate::methods::polyharmonic`] baselines ([CG] §4.3) in symmetric form:
+//! are those of the [`crate::methods::polyharmonic`] baselines (\[CG\] §4.3) in symmetric form:
 //!
 //! - `k = 1`: `(−Ls)_ff X_f = (Ls)_fc X_c`;
 //! - `k = 2`: `(Ls M⁻¹ Ls)_ff X_f = −(Ls M⁻¹ Ls)_fc X_c`;

@@ -1,11 +1,11 @@
-//! The iterated normal-control method: removes the planar-metric bias of [CG] §3.4 (its §5
+//! The iterated normal-control method: removes the planar-metric bias of \[CG\] §3.4 (its §5
 //! admits the weights "are not optimal") by rebuilding the operators on the 3D surface.
 //!
 //! Starting from a first solve `V₀` (with the planar operators), iteration `k`:
 //!
 //! 1. builds `Ls`, `M` on the current surface `V_k` (3D cotangent weights, mixed areas);
 //! 2. re-propagates the normals, `min ‖L N‖²_M + μ ‖N − n(V_k)‖²_M` with the curve normals
-//!    fixed: the biharmonic propagation of [CG] plus a weak pull towards the normals `n(V_k)`
+//!    fixed: the biharmonic propagation of \[CG\] plus a weak pull towards the normals `n(V_k)`
 //!    of the current surface. The biharmonic interpolant alone leaves a resolution-independent
 //!    error in `N*` (2.3° mean on the torus R 4, r 2) that bounds the final accuracy; the pull
 //!    lets large-scale normal information come from the fitted surface while the curves'

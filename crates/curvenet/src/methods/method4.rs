@@ -1,6 +1,6 @@
-//! Method (4) of [CG] §4.2 (after Botsch and Kobbelt): `Δ²V = 0` on the free vertices with the
+//! Method (4) of \[CG\] §4.2 (after Botsch and Kobbelt): `Δ²V = 0` on the free vertices with the
 //! positions fixed on the curves and `ΔV = b₁` prescribed there, with `b₁ = −2 H n` from the
-//! input normals ([CG]: "we directly cast the b₁ as equality constraints").
+//! input normals (\[CG\]: "we directly cast the b₁ as equality constraints").
 //!
 //! **How `b₁` is derived.** `n` is the input normal of the curve vertex; `H` is the signed
 //! mean curvature of the normal-control guide (eq. 1) at that vertex, evaluated on the

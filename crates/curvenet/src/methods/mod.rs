@@ -1,14 +1,14 @@
 //! Surfacing methods: one module per paper or baseline, one interface ([`SurfacingMethod`]).
 //!
-//! - [`normal_control`]: the journal paper's method ([CG] §3.4, eq. 1–3), with signed mean
-//!   curvature, hard or soft constraints ([CG] §4.5).
+//! - [`normal_control`]: the journal paper's method (\[CG\] §3.4, eq. 1–3), with signed mean
+//!   curvature, hard or soft constraints (\[CG\] §4.5).
 //! - [`iterated`]: normal-control iterated with operators rebuilt on the 3D surface.
-//! - [`polyharmonic`]: the biharmonic `Δ²V = 0` and triharmonic `Δ³V = 0` baselines ([CG] §4.3);
+//! - [`polyharmonic`]: the biharmonic `Δ²V = 0` and triharmonic `Δ³V = 0` baselines (\[CG\] §4.3);
 //!   [`harmonic`]: the same systems on any mesh (libigl's `harmonic`).
-//! - [`method4`]: [CG] §4.2 eq. 4, `Δ²V = 0` with `ΔV = b₁` on the curves.
-//! - [`eg2016`]: the energy of the authors' Eurographics 2016 short paper ([EG]).
+//! - [`method4`]: \[CG\] §4.2 eq. 4, `Δ²V = 0` with `ΔV = b₁` on the curves.
+//! - [`eg2016`]: the energy of the authors' Eurographics 2016 short paper (\[EG\]).
 //! - [`andrews2011`]: the order-k Laplacians with ghost-vertex Cauchy constraints of Andrews et
-//!   al. 2011 ([A11]).
+//!   al. 2011 (\[A11\]).
 //!
 //! Every method solves for the free vertices with the curve vertices fixed (hard constraints
 //! eliminated) or pulled (soft), factoring each distinct system matrix once
@@ -65,7 +65,7 @@ pub trait SurfacingMethod: Send + Sync {
 /// Which surfacing method to run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Method {
-    /// [CG] eq. 1–3: propagate positions and normals, estimate the signed mean curvature,
+    /// \[CG\] eq. 1–3: propagate positions and normals, estimate the signed mean curvature,
     /// fit `L V = −2 H N*`.
     #[default]
     NormalControl,
@@ -73,11 +73,11 @@ pub enum Method {
     Biharmonic,
     /// `Δ³V = 0` with the curve vertices fixed (positions only).
     Triharmonic,
-    /// [CG] §4.2 eq. 4: `Δ²V = 0` with `ΔV = b₁` at the curve vertices, from the normals.
+    /// \[CG\] §4.2 eq. 4: `Δ²V = 0` with `ΔV = b₁` at the curve vertices, from the normals.
     Method4,
-    /// [EG]: `‖Δ²V‖² + ω₁ ‖ΔV + 2H n*‖² + ω₀ soft`.
+    /// The short paper's energy (\[EG\]): `‖Δ²V‖² + ω₁ ‖ΔV + 2H n*‖² + ω₀ soft`.
     ShortPaper,
-    /// [A11]: `Δᵏ V = 0` (`Options::order`) with ghost-vertex Cauchy constraints on the curves
+    /// Andrews et al. 2011 (\[A11\]): `Δᵏ V = 0` (option `order`) with ghost-vertex Cauchy constraints on the curves
     /// ([`crate::methods::andrews2011`]).
     Cauchy,
 }
@@ -118,7 +118,7 @@ pub enum Energy {
     /// propagation's, so one factorisation serves both (closed surfaces).
     #[default]
     Area,
-    /// `Σ_v ‖(LV)_v + 2H n*‖²` as written in [CG] eq. 2 (matrix `Ls M⁻² Ls`).
+    /// `Σ_v ‖(LV)_v + 2H n*‖²` as written in \[CG\] eq. 2 (matrix `Ls M⁻² Ls`).
     Uniform,
 }
 
@@ -135,7 +135,7 @@ impl Energy {
     }
 }
 
-/// Which Voronoi area `A` divides the sum in the mean-curvature guide ([CG] eq. 1).
+/// Which Voronoi area `A` divides the sum in the mean-curvature guide (\[CG\] eq. 1).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum GuideArea {
     /// The area `M` of the Laplacian the fit uses. With the planar metric, `L = M⁻¹Ls` of the
@@ -144,7 +144,7 @@ pub enum GuideArea {
     /// order (sphere at 20k vertices: mean error 0.0011 instead of 0.0084).
     #[default]
     Mass,
-    /// The Voronoi area of `v*` on the propagated surface `V*`, as [CG] §3.4 states it.
+    /// The Voronoi area of `v*` on the propagated surface `V*`, as \[CG\] §3.4 states it.
     Surface,
 }
 
@@ -168,7 +168,7 @@ pub struct MethodResult {
     pub positions: Vec<DVec3>,
     /// Propagated unit normals `N*` (normal-control only), `#V`.
     pub propagated_normals: Option<Vec<DVec3>>,
-    /// The signed mean-curvature guide `H` of [CG] eq. 1 (normal-control only), `#V`.
+    /// The signed mean-curvature guide `H` of \[CG\] eq. 1 (normal-control only), `#V`.
     pub guide_curvature: Option<Vec<f64>>,
 }
 

@@ -1,6 +1,6 @@
-//! Normal-controlled surfacing ([CG] §3.4): propagate positions and normals from the curves,
+//! Normal-controlled surfacing (\[CG\] §3.4): propagate positions and normals from the curves,
 //! estimate the signed mean curvature from both (eq. 1), and find the surface whose Laplacian
-//! best matches the mean-curvature vectors (eq. 2–3), with hard or soft ([CG] §4.5) curve
+//! best matches the mean-curvature vectors (eq. 2–3), with hard or soft (\[CG\] §4.5) curve
 //! constraints.
 //!
 //! 1. Propagation: `L² V* = 0`, `L² N* = 0` on the free vertices, curve vertices fixed; in
@@ -10,17 +10,17 @@
 //!    divided by the Laplacian's own Voronoi area `M` ([`GuideArea::Mass`], default) or by the
 //!    area of `v*` on `V*` as the paper states it ([`GuideArea::Surface`]).
 //! 3. Fit: `min Σ_v w_v ‖(Ls V)_v − b_v‖²`, `b_v = −2 A_v H_v n*_v` (that is `L V = −2 H N*`),
-//!    with `w_v = 1/A_v` (area-weighted, docs/design.md §1) or `1/A_v²` ([CG] eq. 2 as written). Rows
+//!    with `w_v = 1/A_v` (area-weighted, docs/design.md §1) or `1/A_v²` (\[CG\] eq. 2 as written). Rows
 //!    of open-boundary vertices are left out (their one-sided Laplacian is not a curvature).
 //!    With the area weighting and no open boundary the matrix is the propagation's, and its
 //!    factorisation is reused.
 //! 4. Guide updates (`guide_updates` times, an extension of the paper): eq. 1 is evaluated
 //!    again on the fitted surface `V` (same normals `N*`) and the fit repeated with the same
 //!    factorisation. `V*` is a biharmonic interpolant whose tangential distribution differs
-//!    from the fit's (at open borders markedly: the cylinder of [CG] Fig. 1 bulges to radius
+//!    from the fit's (at open borders markedly: the cylinder of \[CG\] Fig. 1 bulges to radius
 //!    1.09 with `V*`, and is exact to 2e-5 after one update); the fitted surface's is the
 //!    one the fit's Laplacian sees.
-//! 5. Soft constraints ([CG] §4.5): `+ ω_s Σ_{s ∈ curve} ‖v_s − v*_s‖²`, all vertices unknown.
+//! 5. Soft constraints (\[CG\] §4.5): `+ ω_s Σ_{s ∈ curve} ‖v_s − v*_s‖²`, all vertices unknown.
 
 use super::{check_finite, factor_on, known_rows, scatter, Energy, GuideArea, MethodResult, SurfacingMethod};
 use crate::error::{Error, Result};
@@ -72,7 +72,7 @@ pub struct NormalControlParams {
     pub soft_weight: Option<f64>,
 }
 
-/// The propagated positions and normals ([CG] §3.4, "Initial vertices and propagated
+/// The propagated positions and normals (\[CG\] §3.4, "Initial vertices and propagated
 /// normals") and the factorisation that computed them.
 pub(crate) struct Propagation {
     /// `V*`: the biharmonic interpolant of the curve vertices, `#V`.
@@ -205,7 +205,7 @@ pub fn normal_control(
     NormalControl::new(*params).solve(mesh, ops, t)
 }
 
-/// The fit's row weights `w_v` ([CG] eq. 2; module docs, 3): `1/A_v` (area-weighted) or
+/// The fit's row weights `w_v` (\[CG\] eq. 2; module docs, 3): `1/A_v` (area-weighted) or
 /// `1/A_v²` (as written), 0 on open-boundary rows.
 pub(crate) fn fit_weights(on_boundary: &[bool], inv_m: &[f64], energy: Energy) -> Vec<f64> {
     (0..inv_m.len())

@@ -1,4 +1,4 @@
-//! The biharmonic and triharmonic baselines ([CG] §4.3, Table 1; [EG] Fig. 2): `Δ²V = 0` or
+//! The biharmonic and triharmonic baselines (\[CG\] §4.3, Table 1; \[EG\] Fig. 2): `Δ²V = 0` or
 //! `Δ³V = 0` on the free vertices with the curve vertices fixed.
 //!
 //! Written in symmetric form (multiplying the rows by `M`): `(Ls M⁻¹ Ls)_ff V_f = −(Ls M⁻¹

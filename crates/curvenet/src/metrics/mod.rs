@@ -1,4 +1,4 @@
-//! Measuring a surface against an analytic ground truth ([CG] §4.3, Table 1): distances of the
+//! Measuring a surface against an analytic ground truth (\[CG\] §4.3, Table 1): distances of the
 //! free vertices to the true surface and angles between the mesh normals and the true normals.
 
 pub mod check;
@@ -8,28 +8,37 @@ use crate::geom::DVec3;
 /// An analytic surface with exact closest-point distances.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Truth {
+    /// Sphere of `radius` around `center`.
     Sphere {
+        /// Centre.
         center: DVec3,
+        /// Radius.
         radius: f64,
     },
     /// Torus around the z axis through the origin.
     Torus {
+        /// Distance from the axis to the tube's centre line (`R`).
         major: f64,
+        /// Radius of the tube (`r`).
         minor: f64,
     },
     /// Infinite cylinder around the z axis.
     Cylinder {
+        /// Radius.
         radius: f64,
     },
     /// `z = (x² − y²)/2`.
     Saddle,
     /// Axis-aligned ellipsoid `x²/a² + y²/b² + z²/c² = 1`.
     Ellipsoid {
+        /// Semi-axes `(a, b, c)`.
         axes: DVec3,
     },
     /// The plane `n · x = offset` (unit `n`).
     Plane {
+        /// Unit normal `n`.
         normal: DVec3,
+        /// Offset along `n`.
         offset: f64,
     },
 }
@@ -197,14 +206,20 @@ fn closest_on_ellipsoid(e: DVec3, p: DVec3) -> DVec3 {
 /// Summary of a set of distances.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct DistanceStats {
+    /// Number of values.
     pub count: usize,
+    /// Smallest value.
     pub min: f64,
+    /// Largest value.
     pub max: f64,
+    /// Mean.
     pub mean: f64,
+    /// Root mean square.
     pub rms: f64,
 }
 
 impl DistanceStats {
+    /// The summary of `values` (all zero for none).
     pub fn of(values: impl IntoIterator<Item = f64>) -> Self {
         let (mut n, mut min, mut max, mut sum, mut sq) = (0usize, f64::INFINITY, 0.0f64, 0.0, 0.0);
         for v in values {
@@ -222,7 +237,7 @@ impl DistanceStats {
 }
 
 /// Distances of the vertices `first..` (the free vertices when `first` is the number of curve
-/// vertices, as in [CG] Table 1) to `truth`.
+/// vertices, as in \[CG\] Table 1) to `truth`.
 pub fn distance_to_truth(positions: &[DVec3], first: usize, truth: &Truth) -> DistanceStats {
     DistanceStats::of(positions[first.min(positions.len())..].iter().map(|p| truth.distance(*p)))
 }
@@ -302,6 +317,7 @@ fn box_distance_sq(b: &crate::geom::Aabb, p: DVec3) -> f64 {
 }
 
 impl<'a> MeshDistance<'a> {
+    /// A closest-point structure over the triangles `faces` of `positions` (a bounding-box tree).
     pub fn new(positions: &'a [DVec3], faces: &'a [[u32; 3]]) -> Self {
         let tri_box = |f: &[u32; 3]| crate::geom::Aabb::of(f.iter().map(|&i| positions[i as usize]));
         let boxes: Vec<crate::geom::Aabb> = faces.iter().map(tri_box).collect();
@@ -400,15 +416,23 @@ impl<'a> MeshDistance<'a> {
 /// A ground truth: an analytic surface or a reference mesh.
 #[derive(Clone, Copy, Debug)]
 pub enum Reference<'a> {
+    /// An analytic surface.
     Analytic(Truth),
-    Mesh { positions: &'a [DVec3], faces: &'a [[u32; 3]] },
+    /// A triangle mesh.
+    Mesh {
+        /// Vertex positions.
+        positions: &'a [DVec3],
+        /// Triangles.
+        faces: &'a [[u32; 3]],
+    },
 }
 
-/// What [`evaluate`] measured ([CG] §4.3, Fig. 5). Angles in degrees.
+/// What [`evaluate`] measured (\[CG\] §4.3, Fig. 5). Angles in degrees.
 #[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct Evaluation {
     /// Vertices evaluated (the free ones) and excluded (on the curves).
     pub vertices: usize,
+    /// Vertices left out (on the curves).
     pub excluded: usize,
     /// Distances of the evaluated vertices to the truth.
     pub distance: DistanceStats,
@@ -423,7 +447,7 @@ pub struct Evaluation {
 }
 
 /// Measures a mesh against a ground truth over its vertices not flagged in `exclude` (the
-/// curve vertices, as in [CG] Table 1). `normals`: the mesh's vertex normals (computed from
+/// curve vertices, as in \[CG\] Table 1). `normals`: the mesh's vertex normals (computed from
 /// the faces when `None`); `propagated`: the propagated normals `N*`, if known.
 pub fn evaluate(
     positions: &[DVec3],

@@ -1,5 +1,5 @@
 //! Edits of a network for interactive use: turning the normals of one curve about its
-//! tangents ([CG] Fig. 1: the same two circles give a cylinder, a barrel or a bottleneck
+//! tangents (\[CG\] Fig. 1: the same two circles give a cylinder, a barrel or a bottleneck
 //! depending on how their normals tilt).
 
 use crate::error::{Error, Result};

@@ -41,7 +41,8 @@ fn params(a: f64, b: f64, n: usize, closed: bool) -> impl Iterator<Item = f64> {
 fn sphere() -> Network {
     // Crossings at multiples of 90° fall on samples (128 per circle).
     let n = 128;
-    let circles: [(&str, fn(f64, f64) -> DVec3); 3] = [
+    type Circle = (&'static str, fn(f64, f64) -> DVec3);
+    let circles: [Circle; 3] = [
         ("equator z=0", |c, s| DVec3::new(c, s, 0.0)),
         ("meridian x=0", |c, s| DVec3::new(0.0, c, s)),
         ("meridian y=0", |c, s| DVec3::new(s, 0.0, c)),

@@ -1,5 +1,5 @@
 //! The input model: a network of 3D curves sampled with positions and surface normals
-//! ([CG] §3: "a discrete sample of positions pᵢ together with the unit surface normals nᵢ").
+//! (\[CG\] §3: "a discrete sample of positions pᵢ together with the unit surface normals nᵢ").
 //!
 //! A [`Network`] is what the readers in [`crate::io`] produce and what the examples in
 //! [`crate::network::examples`] build. [`Network::validated`] checks it at the door and returns a
@@ -30,6 +30,7 @@ pub struct Curve {
 /// A curve network: curves that meet at nodes and bound the patches of the surface.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Network {
+    /// The curves.
     pub curves: Vec<Curve>,
     /// Snapping tolerance (a distance): two curves closer than this meet at a node. `None`
     /// uses [`Network::DEFAULT_SNAP_RELATIVE`] times the bounding-box diagonal.
@@ -102,7 +103,7 @@ impl Network {
         }
     }
 
-    /// A copy with sensor-like noise ([CG] §4.5, Fig. 7): Gaussian noise of standard deviation
+    /// A copy with sensor-like noise (\[CG\] §4.5, Fig. 7): Gaussian noise of standard deviation
     /// `fraction × spacing` on the positions (`spacing` the mean sample spacing) and a
     /// Gaussian perturbation of standard deviation `fraction` on the unit normals, which are then
     /// re-normalised. Samples that coincide (crossings sampled by both curves) receive the same
@@ -204,7 +205,7 @@ impl Network {
             return Err(Error::input("all samples of the network coincide: there is nothing to surface"));
         }
         let far = bbox.min.abs().max(bbox.max.abs()).max_element();
-        if !(far <= Self::MAX_EXTENT && diag <= Self::MAX_EXTENT && diag >= 1.0 / Self::MAX_EXTENT) {
+        if !(far <= Self::MAX_EXTENT && (1.0 / Self::MAX_EXTENT..=Self::MAX_EXTENT).contains(&diag)) {
             return Err(Error::input(format!(
                 "the network's coordinates (largest magnitude {far:.3e}, bounding-box diagonal {diag:.3e}) are \
                  outside the supported range [{:.0e}, {:.0e}]; rescale the network (the result scales with it)",

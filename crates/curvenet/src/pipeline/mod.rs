@@ -1,4 +1,4 @@
-//! The whole pipeline, network in, surface out ([CG] §3.1; docs/design.md §1).
+//! The whole pipeline, network in, surface out (\[CG\] §3.1; docs/design.md §1).
 //!
 //! 1. [`options`]: the run's options, their names and presets.
 //! 2. [`prepare`]: validate, find nodes, fit splines, trace the cycles, pick the spacing,

@@ -18,7 +18,7 @@ use crate::methods::{Energy, GuideArea, Method};
 /// The domain each patch is triangulated in (option `patching`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Patching {
-    /// The plane of the cycle's mean point and mean normal ([CG] §3.3).
+    /// The plane of the cycle's mean point and mean normal (\[CG\] §3.3).
     #[default]
     Planar,
     /// A conformal flattening (LSCM) of the patch on a first solution: triangles keep their
@@ -76,7 +76,7 @@ pub struct Options {
     pub method: Method,
     /// The mesh: `spacing`, `vertices`, `snap`, `patching`.
     pub mesh: MeshOptions,
-    /// `soft`: soft curve constraints ([CG] §4.5) instead of hard ones: the surface may leave
+    /// `soft`: soft curve constraints (\[CG\] §4.5) instead of hard ones: the surface may leave
     /// the curves to smooth out deviations shorter than about `S` input sample spacings
     /// (`S ≈ 1–3` for sensor noise). With the iterations, the curve normals are soft too. The
     /// penalty is `ω Σ_s ‖v_s − v*_s‖²` with `ω = d / λ³`, `λ = S h`, `d` the spacing and `h`
@@ -105,9 +105,9 @@ pub enum Preset {
     /// and one guide update (one factorisation; sphere 1e-3, torus 0.2 mean error at 20k
     /// vertices — the default is 4× (sphere) to 80× (torus) more accurate for 2–3× the time).
     Fast,
-    /// The method as the paper describes it ([CG] §3): planar projections and planar weights,
+    /// The method as the paper describes it (\[CG\] §3): planar projections and planar weights,
     /// the unweighted energy of eq. 2, eq. 1 divided by the area on `V*`, no guide update, no
-    /// iteration; for `cauchy`, [A11]'s own ghost vertices (no update). A faithful
+    /// iteration; for `cauchy`, \[A11\]'s own ghost vertices (no update). A faithful
     /// implementation measured 0.0085 mean distance on the sphere.
     Paper,
 }

@@ -1,4 +1,4 @@
-//! The stages before the final solve ([CG] §3.1–3.3; docs/design.md §1, steps 1–6): validate
+//! The stages before the final solve (\[CG\] §3.1–3.3; docs/design.md §1, steps 1–6): validate
 //! the options and the network, find the nodes and segments, fit the splines, trace the
 //! cycles, choose the spacing, resample and tessellate — with planar projections, or with a
 //! coarse first solve whose conformal flattening the patches are triangulated in.
@@ -160,8 +160,8 @@ fn check_options(options: &Options) -> Result<()> {
     Ok(())
 }
 
-/// Validation, nodes and segments ([CG] §3.1), splines (the tangents at nodes) and cycles
-/// ([CG] §3.2).
+/// Validation, nodes and segments (\[CG\] §3.1), splines (the tangents at nodes) and cycles
+/// (\[CG\] §3.2).
 fn topology(network: &Network, mesh: &MeshOptions, timings: &mut Timings, progress: Progress<'_>) -> Result<Topology> {
     let clock = Instant::now();
     let (net, mut warnings) = network.validated()?;
@@ -181,7 +181,7 @@ fn topology(network: &Network, mesh: &MeshOptions, timings: &mut Timings, progre
     Ok(Topology { net, g, splines, patches, snap, warnings })
 }
 
-/// Resamples and tessellates at spacing `d` with planar projections ([CG] §3.3).
+/// Resamples and tessellates at spacing `d` with planar projections (\[CG\] §3.3).
 fn planar_stage(topo: &Topology, d: f64, timings: &mut Timings) -> Result<(Resampled, Mesh)> {
     let res = timed(&mut timings.resample, || resample_network(&topo.g, &topo.splines, d));
     let mesh = timed(&mut timings.tessellate, || -> Result<Mesh> {
@@ -192,7 +192,7 @@ fn planar_stage(topo: &Topology, d: f64, timings: &mut Timings) -> Result<(Resam
     Ok((res, mesh))
 }
 
-/// Better patching ([CG] §6): a coarse first solution (twice the spacing) on planar
+/// Better patching (\[CG\] §6): a coarse first solution (twice the spacing) on planar
 /// projections, then each patch re-tessellated in a conformal flattening of it. `size` (with
 /// the target vertex count), when the spacing was not given: the spacing follows the flattened
 /// domains' area. Returns the mesh, its spacing and its segments' layout.

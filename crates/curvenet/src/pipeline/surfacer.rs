@@ -1,10 +1,10 @@
 //! A surfacing run that keeps its mesh and factorisations for fast re-solves with new curve
-//! normals or positions: the editing loop of [CG] §5 (change the normals along a curve, see the
+//! normals or positions: the editing loop of \[CG\] §5 (change the normals along a curve, see the
 //! surface follow).
 //!
 //! [`Surfacer::new`] runs the stages up to the tessellation once ([`crate::pipeline`]); each
 //! [`Surfacer::solve`] runs the final solve on that mesh. Every method's matrices depend on
-//! the mesh and its domain operators only, not on the curve values ([CG] eq. 1–3: the normals
+//! the mesh and its domain operators only, not on the curve values (\[CG\] eq. 1–3: the normals
 //! and positions enter the right-hand sides; for `cauchy` the ghost vertices), so after
 //! [`Surfacer::update_normals`] or [`Surfacer::update_points`] a solve costs right-hand sides
 //! and triangular solves — for every method ([`crate::methods::SurfacingMethod`]). With

@@ -22,6 +22,8 @@ pub fn diverging(t: f64) -> Rgb {
 
 /// The viridis sequential map at `t ∈ [0, 1]`.
 pub fn sequential(t: f64) -> Rgb {
+    // Colour components of viridis, not π-related constants (0.318 is a green's blue).
+    #[allow(clippy::approx_constant)]
     const STOPS: [(f64, Rgb); 6] = [
         (0.0, [0.267, 0.005, 0.329]),
         (0.2, [0.254, 0.265, 0.530]),

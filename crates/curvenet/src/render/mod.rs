@@ -1,6 +1,6 @@
 //! Pictures of surfaces, headless and without a GPU: shaded surfaces, signed mean curvature
 //! on a diverging colour map centred at zero, isophotes (zebra stripes), the deviation between
-//! propagated and computed normals, and the input curves on top — the views by which [CG]
+//! propagated and computed normals, and the input curves on top — the views by which \[CG\]
 //! judges its surfaces (Fig. 3–8).
 //!
 //! - [`raster`]: camera, visibility buffer, depth-tested lines, anti-aliasing downsample.
@@ -36,8 +36,11 @@ use std::path::Path;
 /// An 8-bit RGB image, rows top to bottom.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// `width × height × 3` bytes, rows top to bottom.
     pub rgb: Vec<u8>,
 }
 
@@ -97,17 +100,18 @@ pub enum Coloring {
     /// Plain shading (Blinn–Phong, two lights).
     Shaded,
     /// Signed mean curvature, diverging map centred at zero (`+` red, `−` blue), with a colour
-    /// bar ([CG] Fig. 3, 4, 8).
+    /// bar (\[CG\] Fig. 3, 4, 8).
     Curvature,
     /// Isophotes: zebra stripes of the reflected view direction; kinks in the stripes show
-    /// tangent discontinuities, wobbles show curvature noise ([CG] Fig. 4).
+    /// tangent discontinuities, wobbles show curvature noise (\[CG\] Fig. 4).
     Isophotes,
     /// Angle in degrees between the propagated normals `N*` and the surface's own normals
-    /// ([CG] Fig. 5), sequential map with a colour bar.
+    /// (\[CG\] Fig. 5), sequential map with a colour bar.
     NormalDeviation,
 }
 
 impl Coloring {
+    /// Every colouring.
     pub const ALL: [Coloring; 4] =
         [Coloring::Shaded, Coloring::Curvature, Coloring::Isophotes, Coloring::NormalDeviation];
 
@@ -131,6 +135,7 @@ impl Coloring {
         }
     }
 
+    /// The colouring called `s` ([`Coloring::name`]; `zebra` is `isophotes`).
     pub fn parse(s: &str) -> Option<Coloring> {
         Coloring::ALL.into_iter().find(|c| c.name() == s || (s == "zebra" && *c == Coloring::Isophotes))
     }
@@ -139,7 +144,9 @@ impl Coloring {
 /// What is drawn: a triangle mesh with per-vertex attributes, and polylines on top.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
+    /// Vertex positions, `#V`.
     pub positions: Vec<DVec3>,
+    /// Triangles, counter-clockwise seen from outside, `#F`.
     pub faces: Vec<[u32; 3]>,
     /// Unit vertex normals (shading, isophotes).
     pub normals: Vec<DVec3>,
@@ -293,9 +300,13 @@ fn percentile(mut values: Vec<f64>, q: f64) -> f64 {
 /// One panel of a picture: a scene, how it is coloured, from where, and its title.
 #[derive(Clone, Debug)]
 pub struct Panel<'a> {
+    /// What is drawn.
     pub scene: &'a Scene,
+    /// How it is coloured.
     pub coloring: Coloring,
+    /// From where.
     pub view: View,
+    /// The caption above the panel.
     pub title: String,
     /// Colour range: `±range` for curvature, `[0, range]` degrees for normal deviation;
     /// `None` picks it from the data. Give panels one range to compare them.
@@ -309,15 +320,21 @@ pub struct Panel<'a> {
 /// Options of [`render`]: which colourings and views, laid out in a grid.
 #[derive(Clone, Debug)]
 pub struct RenderOptions {
+    /// Width of the whole picture in pixels.
     pub width: u32,
+    /// Height of the whole picture in pixels.
     pub height: u32,
+    /// The colourings, one panel each (per view).
     pub colorings: Vec<Coloring>,
     /// One panel per colouring and view; empty: the default view.
     pub views: Vec<View>,
     /// Columns of the grid; `None`: one row per view, one column per colouring.
     pub columns: Option<usize>,
+    /// Colour range of every panel (see [`Panel::range`]).
     pub range: Option<f64>,
+    /// Isophote stripes (see [`Panel::stripes`]).
     pub stripes: u32,
+    /// Draw the scene's curves.
     pub curves: bool,
     /// Prefix of every panel's title.
     pub title: Option<String>,

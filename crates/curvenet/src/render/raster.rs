@@ -11,8 +11,11 @@ const FOV_DEG: f64 = 28.0;
 /// elevation above the xy plane, and a zoom factor (1 frames the whole bounding sphere).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct View {
+    /// Degrees about +z (0 looks from +x).
     pub azimuth: f64,
+    /// Degrees above the xy plane.
     pub elevation: f64,
+    /// Zoom factor (1 frames the whole bounding sphere).
     pub zoom: f64,
 }
 
@@ -46,9 +49,13 @@ impl View {
 /// A pinhole camera framing a bounding sphere, in pixels of the (supersampled) frame.
 #[derive(Clone, Copy, Debug)]
 pub struct Camera {
+    /// Position of the eye.
     pub eye: DVec3,
+    /// Unit vector to the right of the image.
     pub right: DVec3,
+    /// Unit vector to the top of the image.
     pub up: DVec3,
+    /// Unit viewing direction.
     pub forward: DVec3,
     focal: f64,
     cx: f64,
@@ -121,10 +128,15 @@ pub const EMPTY: u32 = u32::MAX;
 /// The visibility buffer of one frame: per sample the inverse depth of the nearest surface,
 /// its triangle, and perspective-correct barycentric coordinates of vertices 1 and 2.
 pub struct Visibility {
+    /// Width in samples.
     pub width: usize,
+    /// Height in samples.
     pub height: usize,
+    /// Per sample: inverse depth of the nearest surface (0: none).
     pub inv_depth: Vec<f32>,
+    /// Per sample: the nearest triangle, or [`EMPTY`].
     pub triangle: Vec<u32>,
+    /// Per sample: perspective-correct barycentric coordinates of vertices 1 and 2.
     pub bary: Vec<[f32; 2]>,
 }
 
@@ -189,8 +201,11 @@ impl Visibility {
 
 /// An RGB frame of `f32` colours, for drawing before the downsample.
 pub struct Frame {
+    /// Width in samples.
     pub width: usize,
+    /// Height in samples.
     pub height: usize,
+    /// Per sample: linear RGB in `[0, 1]`, rows top to bottom.
     pub rgb: Vec<[f32; 3]>,
 }
 

@@ -86,7 +86,7 @@ impl Cholesky {
 
     /// [`Cholesky::factor`] for a system whose unknowns fall in parts coupled only along thin
     /// borders (`parts[i]`: the part of unknown `i`; for the surfacing systems, the patch of
-    /// each free vertex, see [`crate::mesh::Mesh::free_vertex_patches`]): nested dissection
+    /// each free vertex, see `Mesh::free_vertex_patches`): nested dissection
     /// along the parts ([`crate::solve::ordering::nested_dissection_in_parts`]) from
     /// [`Ordering::PARTS_FROM`] unknowns. `None` or parts of the wrong length: as
     /// [`Cholesky::factor`].

@@ -1,6 +1,6 @@
 //! Sparse LU with partial pivoting (faer's supernodal LU with COLAMD ordering), for the
 //! non-symmetric systems: the Andrews et al. system, whose micro-Laplacians make the matrix
-//! non-symmetric ([A11] §4.3; [A11] used SuperLU, also an LU).
+//! non-symmetric (\[A11\] §4.3; \[A11\] used SuperLU, also an LU).
 
 use super::Factorization;
 use faer::linalg::solvers::Solve;

@@ -5,7 +5,7 @@
 //!   analysis kept for numeric refactors, solved for many right-hand sides; and the weighted
 //!   least-squares energies [`LeastSquares`] that give its matrix and right-hand sides.
 //! - [`cholesky`]: faer's supernodal `LLᵀ` of the symmetric positive definite systems, with
-//!   triangular solves tuned for a few right-hand sides ([`kernels`], [`tree_solve`]).
+//!   triangular solves tuned for a few right-hand sides (modules `kernels`, `tree_solve`).
 //! - [`lu`]: sparse LU for the non-symmetric ones (the Andrews et al. system).
 //! - [`ordering`]: fill-reducing orderings (nested dissection by levels and along patches).
 //! - [`sparse`]: the compressed-column matrix and the products `A diag(d) B` the energies need.

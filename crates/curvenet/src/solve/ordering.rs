@@ -491,7 +491,7 @@ fn split_by_parts(g: &Csc, set: &[u32], parts: &[u32], id: u32, sc: &mut Scratch
                 }
                 if w_a >= lo && w_a <= hi {
                     let cost = ratio_cost(out_a.min(out_b), w_a, total - w_a);
-                    if best.as_ref().map_or(true, |(c, _, _)| cost < *c) {
+                    if best.as_ref().is_none_or(|(c, _, _)| cost < *c) {
                         best = Some((cost, in_a.clone(), out_a <= out_b));
                     }
                 }

@@ -8,10 +8,15 @@ use rayon::prelude::*;
 /// A sparse matrix in compressed-column form; row indices sorted within each column.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Csc {
+    /// Number of rows.
     pub nrows: usize,
+    /// Number of columns.
     pub ncols: usize,
+    /// Start of each column in `row_idx` and `values`, `ncols + 1`.
     pub col_ptr: Vec<usize>,
+    /// Row of each stored entry, sorted within each column.
     pub row_idx: Vec<u32>,
+    /// Value of each stored entry.
     pub values: Vec<f64>,
 }
 
@@ -22,6 +27,7 @@ impl Csc {
         (&self.row_idx[r.clone()], &self.values[r])
     }
 
+    /// Number of stored entries.
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
     }

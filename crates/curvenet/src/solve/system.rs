@@ -14,7 +14,7 @@
 //! known values or targets costs a right-hand side and triangular solves
 //! ([`Eliminated::solve`]).
 //!
-//! The energies of normal-control ([CG] eq. 1–3), the polyharmonic baselines and the short
+//! The energies of normal-control (\[CG\] eq. 1–3), the polyharmonic baselines and the short
 //! paper are weighted least squares in the cotangent Laplacian, `Σ_v w_v ‖(Ls X)_v − T_v‖²`
 //! ([`LeastSquares`]): `Q = Ls W Ls` and `B − Q X̃ = Ls W (T − Ls X̃)`, computed as two sparse
 //! products without forming the coupling block `Q_uk`.

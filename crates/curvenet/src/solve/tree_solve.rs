@@ -63,9 +63,7 @@ pub(super) fn split(sym: &SymbolicSupernodalCholesky<u32>) -> Option<TreeSplit> 
     let mut top = Vec::new();
     loop {
         let sum: usize = candidates.iter().map(|&c| work[c]).sum();
-        let Some((i, &heavy)) = candidates.iter().enumerate().max_by_key(|(_, &c)| work[c]) else {
-            return None;
-        };
+        let (i, &heavy) = candidates.iter().enumerate().max_by_key(|(_, &c)| work[c])?;
         if candidates.len() == 1 || (work[heavy] * 10 > sum * 6 && !children[heavy].is_empty()) {
             candidates.swap_remove(i);
             top.push(heavy);

@@ -1,7 +1,7 @@
 //! Conformal flattening of disk-shaped patches: least squares conformal maps (Lévy, Petitjean,
 //! Ray, Maillot, *Least squares conformal maps for automatic texture atlas generation*, SIGGRAPH
 //! 2002), used to re-tessellate patches whose planar projection is far from isometric
-//! ([CG] §5 names the planar weights' distortion as the method's weakness; §6 calls for "a more
+//! (\[CG\] §5 names the planar weights' distortion as the method's weakness; §6 calls for "a more
 //! advanced 3D patching").
 //!
 //! For a linear map `(u, v)` on a triangle with isometric 2D coordinates `q_j` and opposite
@@ -10,8 +10,6 @@
 //! `Σ_T A_T ‖∇v − R∇u‖² = Σ_T (1/4A_T) ‖Σ_j (u_j e_j + v_j R e_j)‖²` with two vertices pinned.
 //! Cotangent weights are invariant under conformal maps, so a triangulation made in this
 //! domain carries weights close to those of the surface.
-//!
-//! [CG]: crate
 
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};

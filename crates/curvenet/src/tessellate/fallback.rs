@@ -1,10 +1,8 @@
 //! Fallback domains for disk patches whose planar projection folds over (the cycle crosses
 //! itself or runs clockwise in its plane, or a sharp corner turns the other way): a deep or
-//! twisted patch ([CG] §3.3 and §5 list it as a limitation). First the plane of the cycle's
+//! twisted patch (\[CG\] §3.3 and §5 list it as a limitation). First the plane of the cycle's
 //! vector area, then a convex domain, an ellipse, on which the triangulation is always
 //! injective. The parts made here are marked `fold_fallback` ([`crate::geom::mesh::Mesh::fold_fallback`]).
-//!
-//! [CG]: crate
 
 use super::planar::{corner_turned, Cycle};
 use super::triangulate::{lift_patch, triangulate};

@@ -1,9 +1,7 @@
-//! Conformal patching ([CG] §6 calls for "a more advanced 3D patching"): each disk patch of a
+//! Conformal patching (\[CG\] §6 calls for "a more advanced 3D patching"): each disk patch of a
 //! coarse first solution is flattened by least squares conformal maps ([`super::conformal`]),
 //! and the patch is triangulated again in that flattening, its fine curve vertices placed on
 //! the flattened border by arc length.
-//!
-//! [CG]: crate
 
 use super::triangulate::{lift_patch, triangulate};
 use super::{describe_patch, loop_vertices, PatchMesh, VRef};

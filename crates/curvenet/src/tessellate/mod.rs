@@ -1,4 +1,4 @@
-//! Tessellation of the patches ([CG] §3.3; docs/design.md §1 step 5): every patch is
+//! Tessellation of the patches (\[CG\] §3.3; docs/design.md §1 step 5): every patch is
 //! triangulated in a planar domain whose border is the patch's cycle of curve vertices, and
 //! all patches are merged into one [`Mesh`] that shares the curve vertices. The triangles'
 //! planar coordinates are kept for the paper's planar cotangent weights.
@@ -6,7 +6,7 @@
 //! The stages, one file each:
 //!
 //! - `planar.rs`, disk patches: the cycle is projected on the plane through its mean point
-//!   with its mean normal ([CG] §3.3); where the normals cancel out or disagree with the
+//!   with its mean normal (\[CG\] §3.3); where the normals cancel out or disagree with the
 //!   cycle, on the plane of the cycle's vector area.
 //! - `triangulate.rs` and `lattice.rs`, the triangulation of the planar polygon: the interior
 //!   is covered by a hexagonal lattice of side `d` (equilateral triangles, taken as they are)
@@ -24,8 +24,6 @@
 //! - `flatten.rs` and [`conformal`], conformal patching: each disk patch of a coarse first
 //!   solution flattened by least squares conformal maps, and triangulated in its flattening.
 //! - `merge.rs`: the patches merged into one mesh, the curve vertices first.
-//!
-//! [CG]: crate
 
 pub mod conformal;
 mod fallback;

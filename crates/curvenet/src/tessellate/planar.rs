@@ -1,11 +1,9 @@
-//! Disk patches in their planar projection ([CG] §3.3): the cycle of curve vertices around
+//! Disk patches in their planar projection (\[CG\] §3.3): the cycle of curve vertices around
 //! the patch is projected on the plane through its mean point with its mean normal and
 //! triangulated there ([`super::triangulate`]). When the normals cancel out (a hemisphere
 //! bounded by a great circle) or disagree with the cycle's orientation, the plane of the
 //! cycle's vector area is used instead. A projection that folds over goes to the fallback
 //! domains ([`super::fallback`]).
-//!
-//! [CG]: crate
 
 use super::triangulate::{lift_patch, triangulate};
 use super::{describe_patch, fallback, loop_vertices, PatchMesh, VRef};

@@ -1,11 +1,9 @@
-//! Tube patches ([CG] Fig. 1: two facing boundary loops, an annulus): the annulus is cut open
+//! Tube patches (\[CG\] Fig. 1: two facing boundary loops, an annulus): the annulus is cut open
 //! along a seam from the first loop to the second and unrolled onto a trapezoidal strip, the
 //! first loop along the bottom edge (its arc length as abscissa), the second along the top
 //! edge at the height of the distance between the loops' centroids, the seam vertices shared
 //! by the left and right edges. The strip is triangulated ([`super::triangulate`]) and lifted
 //! back to 3D by blending the two loops at the same relative abscissa.
-//!
-//! [CG]: crate
 
 use super::triangulate::{lift_patch, triangulate};
 use super::{describe_patch, loop_vertices, PatchMesh, VRef};

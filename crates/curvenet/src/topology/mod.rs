@@ -1,8 +1,6 @@
 //! Topology of the network: where curves meet ([`nodes`]) and which cycles of segments bound
-//! the patches of the surface ([`cycles`], [CG] §3.2); dangling parts of open networks are
+//! the patches of the surface ([`cycles`], \[CG\] §3.2); dangling parts of open networks are
 //! trimmed first ([`open`]).
-//!
-//! [CG]: crate
 
 pub mod cycles;
 pub mod nodes;

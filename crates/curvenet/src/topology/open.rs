@@ -1,12 +1,10 @@
-//! Open networks ([CG] §5 lists them as a limitation): curves, or parts of curves, that bound
+//! Open networks (\[CG\] §5 lists them as a limitation): curves, or parts of curves, that bound
 //! no patch. A *dangling* segment has an end where no other curve meets it (a node of valence
 //! 1): it cannot bound a patch on either side. [`trim_dangling`] removes such segments one by
 //! one (a dangling chain is eaten back to the first node where curves really meet), and lone
 //! closed curves that are not boundary curves and meet no other curve, and reports each curve
 //! it shortened or left out as a [`Warning`] naming the curve and where its kept part ends.
 //! The rest of the network is surfaced as usual.
-//!
-//! [CG]: crate
 
 use super::nodes::Graph;
 use crate::error::{Error, Result, Warning};

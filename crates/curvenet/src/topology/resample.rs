@@ -1,7 +1,5 @@
-//! The segments resampled at the mesh spacing ([CG] §3.1, design.md §1 step 3): the curve
+//! The segments resampled at the mesh spacing (\[CG\] §3.1, design.md §1 step 3): the curve
 //! vertices of the mesh, shared by the patches on both sides of every segment.
-//!
-//! [CG]: crate
 
 use super::Graph;
 use crate::curves::CurveSpline;

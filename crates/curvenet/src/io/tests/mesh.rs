@@ -76,7 +76,8 @@ fn non_finite_values_are_never_written() {
     let dir = std::env::temp_dir().join(format!("curvenet-mesh-nan-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let breakers: [(&str, fn(&mut MeshFile)); 4] = [
+    type Breaker = (&'static str, fn(&mut MeshFile));
+    let breakers: [Breaker; 4] = [
         ("position", |m| m.positions[2].y = f64::NAN),
         ("normal", |m| m.normals.as_mut().unwrap()[1].x = f64::INFINITY),
         ("mean curvature", |m| m.mean_curvature.as_mut().unwrap()[3] = f64::NAN),

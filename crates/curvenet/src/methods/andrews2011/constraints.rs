@@ -1,4 +1,4 @@
-//! Constraint types on the curves of a network ([A11] §4–5) and the `--method cauchy` solve of a
+//! Constraint types on the curves of a network (\[A11\] §4–5) and the `--method cauchy` solve of a
 //! network tessellated by the pipeline.
 //!
 //! The network JSON (docs/design.md §3) gains optional per-curve fields, ignored by the other methods:
@@ -10,7 +10,7 @@
 //!              "stretch": 0.5}]}          // tangent magnitude × (1 + s); a number, or one per sample
 //! ```
 //!
-//! The curve normals are the orientation of the Cauchy constraints ([A11] §4.4). Per-sample
+//! The curve normals are the orientation of the Cauchy constraints (\[A11\] §4.4). Per-sample
 //! values are interpolated along the curve onto the resampled curve vertices, so they survive
 //! any mesh resolution. Where curves of different kinds meet, the node takes the strongest
 //! (cauchy > position > inactive).
@@ -26,7 +26,7 @@ use crate::solve::timing::{seconds_since, timed, Instant};
 use crate::solve::SolveTimings;
 use serde_json::Value;
 
-/// How a curve acts on the surface ([A11] §5).
+/// How a curve acts on the surface (\[A11\] §5).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Kind {
     /// Rides on the surface without shaping it (its vertices are free).
@@ -39,6 +39,7 @@ pub enum Kind {
 }
 
 impl Kind {
+    /// The name in the network JSON (`kind`).
     pub fn name(self) -> &'static str {
         match self {
             Kind::Inactive => "inactive",
@@ -47,10 +48,12 @@ impl Kind {
         }
     }
 
+    /// The kind called `s`.
     pub fn from_name(s: &str) -> Option<Kind> {
         [Kind::Inactive, Kind::Position, Kind::Cauchy].into_iter().find(|k| k.name() == s)
     }
 
+    /// The role of the curve's vertices in the system.
     pub fn role(self) -> Role {
         match self {
             Kind::Inactive => Role::Free,
@@ -63,9 +66,11 @@ impl Kind {
 /// The Cauchy attributes of one curve, per sample.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct CurveAttributes {
+    /// How the curve acts.
     pub kind: Kind,
     /// Sample positions (to locate the resampled vertices along the curve).
     pub points: Vec<DVec3>,
+    /// Whether the curve is closed.
     pub closed: bool,
     /// Sharpness per sample, radians.
     pub sharpness: Vec<f64>,
@@ -76,6 +81,7 @@ pub struct CurveAttributes {
 /// The Cauchy attributes of every curve of a network, in the network's curve order.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct NetworkAttributes {
+    /// One per curve.
     pub curves: Vec<CurveAttributes>,
 }
 
@@ -273,7 +279,7 @@ pub fn curve_constraints(
 /// `⊥ n` (frame `a`, `n × a`) is the mean over the curve edges `u c` of the patch of the difference
 /// between their 3D and domain angles (faces are counter-clockwise in both, so the map keeps
 /// orientation). The edge `u − v` is then the domain vector turned by `φ` and set in the
-/// tangent plane: the rotation `O` of [A11] eq. 3 from the domain normal to the orientation.
+/// tangent plane: the rotation `O` of \[A11\] eq. 3 from the domain normal to the orientation.
 pub fn domain_edges(
     mesh: &Mesh,
     roles: &[Role],
@@ -385,7 +391,7 @@ impl SurfacingMethod for Andrews2011 {
         }
         let edges = domain_edges(mesh, &roles, &params);
         let mut edge_lengths: Vec<((u32, u32), f64)> = edges.iter().map(|(&k, &(_, len))| (k, len)).collect();
-        edge_lengths.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        edge_lengths.sort_unstable_by_key(|e| e.0);
         let reuse = self.kept.take().filter(|k| k.roles == roles && k.edge_lengths == edge_lengths);
         let kept = match reuse {
             Some(k) => {

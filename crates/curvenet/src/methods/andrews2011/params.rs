@@ -1,4 +1,4 @@
-//! The artist parameters of a Cauchy constraint ([A11] §4.4, eq. 3): orientation, sharpness and
+//! The artist parameters of a Cauchy constraint (\[A11\] §4.4, eq. 3): orientation, sharpness and
 //! stretch, turned into ghost vertex positions
 //! `g₁ = u + O Rᵢ (1 + s/‖u − vᵢ‖)(u − vᵢ)` (with a dimensionless stretch, see below).
 //!
@@ -10,14 +10,14 @@
 //!   that the two sides rotate in opposite directions). `θ > 0` lifts the ghosts towards `+n`:
 //!   both sides fall away from the constraint, a ridge (convex towards `n`); `θ = 45°` makes a
 //!   right-angled crease or cone; `θ < 0` a valley.
-//! - `s` stretches the ghost edge. [A11] eq. 3 adds the length `s` (the factor `1 + s/‖u − vᵢ‖`),
+//! - `s` stretches the ghost edge. \[A11\] eq. 3 adds the length `s` (the factor `1 + s/‖u − vᵢ‖`),
 //!   which with its unit micro-Laplacian weight moves the ghost by `s` at any resolution. With
 //!   the consistent weight of [`super::system::MicroWeight`] the tangent's magnitude is
 //!   `‖g₁ − u‖/‖u − vᵢ‖`, so we take `s` dimensionless, `g₁ = u + O Rᵢ (1 + s)(u − vᵢ)`: the
 //!   tangent is `1 + s` times longer at any resolution (the Hermite tangent magnitude).
 //!
 //! Higher ghosts (`k = 3`) continue the line: `g_m = u + m (g₁ − u)` (zero second difference
-//! along the ghost line; [A11] leaves their parameters to separate per-order values).
+//! along the ghost line; \[A11\] leaves their parameters to separate per-order values).
 
 use super::system::System;
 use crate::geom::DVec3;
@@ -44,7 +44,7 @@ impl CauchyParams {
         CauchyParams { orientation, initial_normal: None, sharpness: 0.0, stretch: 0.0, tangent: None }
     }
 
-    /// The first ghost's offset `g₁ − u` for the edge `e = u − v` ([A11] eq. 3).
+    /// The first ghost's offset `g₁ − u` for the edge `e = u − v` (\[A11\] eq. 3).
     pub fn ghost_offset(&self, e: DVec3) -> DVec3 {
         let len = e.length();
         if len == 0.0 {
@@ -81,7 +81,7 @@ impl CauchyParams {
 
 /// Positions of all ghosts of `system`: `edge_positions` give the edges `u − v` (the initial
 /// domain, or the current surface), `params[u]` the parameters of each Cauchy vertex `u`
-/// (`None`: the reflection `g₁ = 2u − v` of [A11] Fig. 3).
+/// (`None`: the reflection `g₁ = 2u − v` of \[A11\] Fig. 3).
 pub fn ghost_positions(system: &System, edge_positions: &[DVec3], params: &[Option<CauchyParams>]) -> Vec<DVec3> {
     system
         .ghosts

@@ -1,4 +1,4 @@
-//! The ghost vertex basis of [A11] §6.2: every free vertex as an affine function of the ghost
+//! The ghost vertex basis of \[A11\] §6.2: every free vertex as an affine function of the ghost
 //! vertices, `vᵢ = kᵢ + Σ_j w_ij g_j` (eq. 4), from the split right-hand side
 //! `bᵢ = lᵢ + Σ_j m_ij g_j` (eq. 5): `A W = M` (one solve per ghost vertex) and `A K = L` (three
 //! solves). Moving ghost vertices then updates the surface by a dense product, without
@@ -11,7 +11,7 @@ use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use faer::Mat;
 
-/// `K` and `W` of [A11] eq. 4 for one system and fixed constraint positions.
+/// `K` and `W` of \[A11\] eq. 4 for one system and fixed constraint positions.
 pub struct GhostBasis {
     /// `K`, `#free × 3`.
     pub k: Mat<f64>,
@@ -53,7 +53,7 @@ impl GhostBasis {
         Ok(GhostBasis { k, w })
     }
 
-    /// Free vertex positions `K + W G` for ghost positions `ghosts` ([A11] eq. 4), `#free × 3`.
+    /// Free vertex positions `K + W G` for ghost positions `ghosts` (\[A11\] eq. 4), `#free × 3`.
     pub fn evaluate(&self, ghosts: &[DVec3]) -> Mat<f64> {
         let ng = ghosts.len();
         let g = Mat::<f64>::from_fn(ng, 3, |i, c| ghosts[i][c]);
@@ -78,7 +78,9 @@ impl GhostBasis {
 /// Timings of [`bench()`]: a fresh factor-and-solve against re-solves through the ghost basis.
 #[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct ResolveBench {
+    /// Free vertices of the system.
     pub unknowns: usize,
+    /// Ghost vertices.
     pub ghosts: usize,
     /// Best of `reps` fresh LU factorisations and solves.
     pub factor_and_solve: f64,
@@ -88,12 +90,13 @@ pub struct ResolveBench {
     pub full_update: f64,
     /// `x += W[:, J] ΔG` for the ghosts of the `moved` constraint vertices (best of `reps`).
     pub partial_update: f64,
+    /// Ghosts moved in the partial update.
     pub partial_ghosts: usize,
     /// Largest difference between the basis and a direct solve for the moved ghosts.
     pub max_difference: f64,
 }
 
-/// Times a fresh factor-and-solve of `system` against the ghost basis re-solves ([A11] §6.2):
+/// Times a fresh factor-and-solve of `system` against the ghost basis re-solves (\[A11\] §6.2):
 /// every ghost moved by a pseudo-random offset of `scale`, and the ghosts of the first
 /// `moved_vertices` Cauchy vertices only.
 pub fn bench(

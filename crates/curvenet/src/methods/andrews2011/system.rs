@@ -1,24 +1,24 @@
 //! The order-k Laplacian system with Cauchy constraints, assembled row by row by the recursion
-//! of [A11] Appendix A, Algorithm 2 (`buildEqn`).
+//! of \[A11\] Appendix A, Algorithm 2 (`buildEqn`).
 //!
 //! Unknowns are the [`Role::Free`] vertices. Row `r` is `Δᵏ(v_r) = 0` with the recursive
-//! Laplacian of [A11] eq. 1, `Δᵏ(u) = (1/A_u) Σᵢ wᵢ (Δᵏ⁻¹(u) − Δᵏ⁻¹(vᵢ))`, `Δ⁰(u) = u`. At a
-//! Cauchy vertex `u` reached from the vertex `v` the micro-Laplacian of [A11] eq. 2 replaces it:
+//! Laplacian of \[A11\] eq. 1, `Δᵏ(u) = (1/A_u) Σᵢ wᵢ (Δᵏ⁻¹(u) − Δᵏ⁻¹(vᵢ))`, `Δ⁰(u) = u`. At a
+//! Cauchy vertex `u` reached from the vertex `v` the micro-Laplacian of \[A11\] eq. 2 replaces it:
 //! `Δᵏ(u_v) = 2wΔᵏ⁻¹(u_v) − wΔᵏ⁻¹(v) − wΔᵏ⁻¹(g₁)`, and along the line of ghost vertices
 //! `g₀ = u, g₁, …, g_{k−1}` (the `gNum` of Algorithm 2) `Δᵏ(g_m) = 2wΔᵏ⁻¹(g_m) − wΔᵏ⁻¹(g_{m−1}) −
 //! wΔᵏ⁻¹(g_{m+1})`. Positions of constraint and ghost vertices go to the right-hand side, which is
 //! kept split (eq. 5): `b = l + Σ_j m_j g_j`, `l` from the fixed vertices, `m_j` per ghost.
 //!
-//! **Micro-Laplacian weight.** [A11] sets `w = 1` (§4.3). With the free vertices' Laplacian scaled
+//! **Micro-Laplacian weight.** \[A11\] sets `w = 1` (§4.3). With the free vertices' Laplacian scaled
 //! by the inverse area, that makes the micro term vanish relative to the others as the mesh is
 //! refined (`O(h²)`), so the tangent condition fades into a natural boundary condition. We use
 //! the 1D Laplacian of the hinge instead, `w = 1/|u − v|²` (the micro geometry's edge length is
 //! that of the edge `u v`), which keeps the terms consistent and makes the 1-manifold case
-//! converge to the cubic Hermite curve ([A11] Fig. 12; `tests/cauchy.rs`). [`MicroWeight`]
+//! converge to the cubic Hermite curve (\[A11\] Fig. 12; `tests/cauchy.rs`). [`MicroWeight`]
 //! selects either.
 //!
 //! **Solver.** The micro-Laplacians make the matrix non-symmetric for `k ≥ 3` (and the rows are
-//! not area-weighted), so it is factored by faer's sparse LU with partial pivoting ([A11] used
+//! not area-weighted), so it is factored by faer's sparse LU with partial pivoting (\[A11\] used
 //! SuperLU, also an LU), once, and reused for every right-hand side (3 coordinates, or one per
 //! ghost vertex for the basis of [`super::reduce`]).
 
@@ -31,7 +31,7 @@ use faer::Mat;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
-/// What a vertex is in the system ([A11] §5: Cauchy, smooth position, inactive constraints).
+/// What a vertex is in the system (\[A11\] §5: Cauchy, smooth position, inactive constraints).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Role {
     /// An unknown (also the vertices of inactive constraints: they ride on the surface).
@@ -44,17 +44,17 @@ pub enum Role {
     Cauchy,
 }
 
-/// The weight `w` of the micro-Laplacian ([A11] eq. 2).
+/// The weight `w` of the micro-Laplacian (\[A11\] eq. 2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum MicroWeight {
     /// `w = 1/|u − v|²`: the hinge's 1D Laplacian, consistent under refinement (default).
     #[default]
     Consistent,
-    /// `w = 1`, as printed in [A11] §4.3.
+    /// `w = 1`, as printed in \[A11\] §4.3.
     Unit,
 }
 
-/// The discrete domain: one-ring weights and vertex areas from a fixed initial domain ([A11]
+/// The discrete domain: one-ring weights and vertex areas from a fixed initial domain (\[A11\]
 /// §3: "cotangent weights are computed in a fixed initial domain and held constant").
 #[derive(Clone, Debug, Default)]
 pub struct Stencil {
@@ -82,7 +82,7 @@ impl Stencil {
         Stencil { neighbours, area: ops.mass.clone(), positions: domain_positions, edge_lengths: HashMap::new() }
     }
 
-    /// A polyline with parameters `t` (increasing): the 1-manifold case of [A11] Fig. 12,
+    /// A polyline with parameters `t` (increasing): the 1-manifold case of \[A11\] Fig. 12,
     /// `wᵢ = 1/|t_u − t_v|`, `A_u` = half the adjacent lengths.
     pub fn polyline(t: &[f64]) -> Self {
         let n = t.len();
@@ -103,23 +103,28 @@ impl Stencil {
         }
     }
 
+    /// Number of vertices of the domain.
     pub fn num_vertices(&self) -> usize {
         self.area.len()
     }
 }
 
 /// A ghost vertex: number `number` (1 ..= k−1) on the line from the Cauchy vertex `vertex` away
-/// from its neighbour `source` ([A11] Fig. 3, Algorithm 2's `gNum`).
+/// from its neighbour `source` (\[A11\] Fig. 3, Algorithm 2's `gNum`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Ghost {
+    /// The Cauchy vertex.
     pub vertex: u32,
+    /// The neighbour the ghost line leads away from.
     pub source: u32,
+    /// Position on the line, 1 ..= k−1.
     pub number: u32,
 }
 
-/// The assembled system `A x = l + Σ_j m_j g_j` ([A11] eq. 1, 2, 5), not yet factored.
+/// The assembled system `A x = l + Σ_j m_j g_j` (\[A11\] eq. 1, 2, 5), not yet factored.
 #[derive(Clone, Debug)]
 pub struct System {
+    /// The Laplacian order `k`.
     pub order: usize,
     /// Vertex of each unknown.
     pub free: Vec<u32>,
@@ -166,7 +171,7 @@ impl Ctx<'_> {
         }
     }
 
-    /// [A11] Algorithm 2, `buildEqn(M, r, v, o, wt, sV, gNum)`: adds `wt · Δᵒ(v)` (seen from
+    /// \[A11\] Algorithm 2, `buildEqn(M, r, v, o, wt, sV, gNum)`: adds `wt · Δᵒ(v)` (seen from
     /// `source` when `v` is a Cauchy vertex; ghost `g_num` of its line) to the row.
     fn build(&self, acc: &mut RowAcc, v: u32, o: usize, wt: f64, source: u32, g_num: u32) {
         let vi = v as usize;
@@ -229,7 +234,7 @@ fn merge(mut v: Vec<(u32, f64)>) -> Vec<(u32, f64)> {
 }
 
 impl System {
-    /// Assembles `Δᵏ x = 0` on the free vertices ([A11] Algorithm 1: one `buildEqn` per row).
+    /// Assembles `Δᵏ x = 0` on the free vertices (\[A11\] Algorithm 1: one `buildEqn` per row).
     pub fn build(stencil: &Stencil, roles: &[Role], order: usize, micro: MicroWeight) -> Result<Self> {
         let n = stencil.num_vertices();
         if roles.len() != n {
@@ -292,6 +297,7 @@ impl System {
         Ok(System { order, free, column, a, fixed, ghost_terms, ghosts, ghost_index })
     }
 
+    /// Number of unknowns (free vertices).
     pub fn num_free(&self) -> usize {
         self.free.len()
     }
@@ -337,7 +343,7 @@ impl System {
         Ok(out)
     }
 
-    /// Solves with ghost lines `g_m = u + m·offset` (one offset per ghost, [A11] eq. 3), then
+    /// Solves with ghost lines `g_m = u + m·offset` (one offset per ghost, \[A11\] eq. 3), then
     /// `updates` re-solves with centred ghosts (ours; `docs/cauchy.md`): `g₁ = v + 2e` turns the
     /// tangent condition into a central difference (`(g₁ − v)/2 = e`: second order instead of
     /// first) and `g₂ = 3g₁ − 3u + v` continues the parabola through `v, u, g₁`, with `v` from

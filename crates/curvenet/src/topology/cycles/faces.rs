@@ -1,10 +1,8 @@
-//! The faces of the network ([CG] §3.2, "Exploiting local tangent space to detect cycles"):
+//! The faces of the network (\[CG\] §3.2, "Exploiting local tangent space to detect cycles"):
 //! the segment ends at every node, checked for dangling segments and borders that are not
 //! manifold, sorted counter-clockwise around the node normal (a rotation system), the faces
 //! it traces, and their classification into patches, slits and the faces of lone boundary
 //! loops.
-//!
-//! [CG]: crate
 
 use super::{HalfEdge, Patch};
 use crate::curves::CurveSpline;

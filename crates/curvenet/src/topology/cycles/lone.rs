@@ -1,11 +1,9 @@
 //! Lone boundary loops: parts of the network made of boundary curves only. Each must be a
 //! single loop; its two faces (one per direction) are the two candidate patch borders. Two
 //! loops that face each other (each loop's plane roughly perpendicular to the line joining
-//! their centroids, and normals that run along that line) bound one tube ([CG] Fig. 1, two
+//! their centroids, and normals that run along that line) bound one tube (\[CG\] Fig. 1, two
 //! circles on a cylinder), nearest pairs first; any other lone loop bounds a disk, on the side
 //! its normals lean to.
-//!
-//! [CG]: crate
 
 use super::faces::{Faces, NodeEnds, Parts};
 use super::{half_edge_samples, HalfEdge, Patch};

@@ -1,4 +1,4 @@
-//! Cycles of segments that bound the patches ([CG] §3.2, "Exploiting local tangent space to
+//! Cycles of segments that bound the patches (\[CG\] §3.2, "Exploiting local tangent space to
 //! detect cycles").
 //!
 //! At every node the incident segments are sorted counter-clockwise around the node normal;
@@ -13,12 +13,10 @@
 //! outside and are dropped. A part made of boundary curves only must be a single loop; such
 //! *lone loops* are paired: two loops that face each other (each loop's plane roughly
 //! perpendicular to the line joining their centroids, and normals that run along that line)
-//! bound one tube ([CG] Fig. 1, two circles on a cylinder); any other lone loop bounds a disk.
+//! bound one tube (\[CG\] Fig. 1, two circles on a cylinder); any other lone loop bounds a disk.
 //!
 //! The stages: `faces.rs` checks the nodes, sorts the segment ends around them and traces and
 //! classifies the faces; `lone.rs` turns the lone boundary loops into tubes and disks.
-//!
-//! [CG]: crate
 
 mod faces;
 mod lone;

@@ -1,4 +1,4 @@
-//! Nodes and segments ([CG] §3.2: "a node is the intersection between two or more curves; a
+//! Nodes and segments (\[CG\] §3.2: "a node is the intersection between two or more curves; a
 //! segment is a portion of curve bounded by two adjacent nodes").
 //!
 //! Curves meet where they share a sample *or* pass within the snapping tolerance of each other
@@ -16,8 +16,6 @@
 //! them into meetings, `meetings.rs` turns each meeting into a node (with the overlap and
 //! orientation checks), `split.rs` adds the end nodes, inserts the nodes into the curves and
 //! cuts the curves into segments.
-//!
-//! [CG]: crate
 
 mod contacts;
 mod meetings;
@@ -120,14 +118,12 @@ impl Graph {
     }
 }
 
-/// Finds the nodes of a validated network and splits its curves into segments ([CG] §3.2).
+/// Finds the nodes of a validated network and splits its curves into segments (\[CG\] §3.2).
 ///
 /// `snap` is the snapping tolerance (a distance). Errors ([`crate::Error::Input`], naming the
 /// curve and a point): curves that overlap (run within the tolerance of each other over a
 /// stretch longer than a few tolerances), curves whose normals disagree in orientation at a
 /// node, and two nodes that land on one point of a curve. The warnings are empty for now.
-///
-/// [CG]: crate
 pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
     let curves = &net.curves;
     let labels: Vec<String> = (0..curves.len()).map(|i| curve_label(curves, i)).collect();

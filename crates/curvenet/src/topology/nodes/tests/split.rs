@@ -83,7 +83,7 @@ fn two_nodes_on_one_point_are_an_input_error() {
     let mut sc = split_curve(
         &Polylines::new(&[ruler(false)], &labels(1)),
         0,
-        &mut vec![(0.0, 0), (3.0, 1)],
+        &mut [(0.0, 0), (3.0, 1)],
         &[Node { position: DVec3::ZERO, normal: DVec3::Z }, Node { position: DVec3::X * 3.0, normal: DVec3::Z }],
     );
     sc.points[2] = sc.points[1];
