@@ -224,9 +224,10 @@ impl Error {
         self.with(|a| a.vertex = Some(vertex))
     }
 
-    /// Records a position near the problem.
-    pub fn point(self, p: crate::geom::DVec3) -> Self {
-        self.with(|a| a.point = Some(p.to_array()))
+    /// Records a position near the problem (a `DVec3` or `[x, y, z]`).
+    pub fn point(self, p: impl Into<[f64; 3]>) -> Self {
+        let p = p.into();
+        self.with(|a| a.point = Some(p))
     }
 
     /// The message with every option name in backticks that `spell` knows respelled for a
