@@ -48,10 +48,7 @@ struct Row {
     ratio: f64,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+use curvenet::metrics::median;
 
 pub fn run(a: &BenchArgs) -> Result<(), Error> {
     let exe = std::env::current_exe().map_err(|e| Error::Io { path: "curvenet".into(), source: e })?;

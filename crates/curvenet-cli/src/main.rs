@@ -27,7 +27,9 @@ use std::io::IsTerminal;
 use std::process::ExitCode;
 
 // Large buffers (factors, right-hand sides) are allocated and freed many times a run; mimalloc
-// keeps them out of repeated mmap/munmap and first-touch page faults.
+// keeps them out of repeated mmap/munmap and first-touch page faults (measured in
+// docs/performance.md, "Allocator"; `--no-default-features` builds with the system's).
+#[cfg(feature = "mimalloc")]
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 

@@ -162,10 +162,7 @@ fn convergence_table(rows: &[Level], with_truth: bool) -> String {
     t
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+use curvenet::metrics::median;
 
 /// Runs `options` on `net` `runs` times; returns the last surface and the median time.
 fn timed(net: &Network, options: &Options, runs: usize) -> Result<(Surface, f64), Error> {

@@ -7,10 +7,7 @@ use curvenet::render::{render, Coloring, RenderOptions, Scene};
 use curvenet::Options;
 use std::time::Instant;
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+use curvenet::metrics::median;
 
 fn main() {
     println!("render 1200x900 (rasterise, shade, anti-alias, encode PNG), median of 7, release build");

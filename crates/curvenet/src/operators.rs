@@ -166,6 +166,28 @@ pub fn vertex_normals(faces: &[[u32; 3]], positions: &[DVec3]) -> Vec<DVec3> {
     n.par_iter().with_min_len(8192).map(|v| v.normalize_or_zero()).collect()
 }
 
+/// Angle-weighted vertex normals (each face's unit normal weighted by its corner angle; Thürmer
+/// and Wüthrich 1998), unit length; zero for a vertex of degenerate faces only. Less sensitive
+/// to the triangulation than [`vertex_normals`]: the normals of sampled meshes.
+pub fn angle_weighted_normals(faces: &[[u32; 3]], positions: &[DVec3]) -> Vec<DVec3> {
+    let mut n = vec![DVec3::ZERO; positions.len()];
+    for f in faces {
+        let p = f.map(|i| positions[i as usize]);
+        let fnrm = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+        if fnrm == DVec3::ZERO {
+            continue;
+        }
+        for k in 0..3 {
+            let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+            let angle = a.angle_between(b);
+            if angle.is_finite() {
+                n[f[k] as usize] += angle * fnrm;
+            }
+        }
+    }
+    n.iter().map(|v| v.normalize_or_zero()).collect()
+}
+
 /// Signed mean curvature by the cotangent formula: `H = −½ (M⁻¹ Ls V) · n` with `n` the vertex
 /// normal (`+1` on a unit sphere). Vertices in `skip` (open-boundary vertices, where the
 /// one-sided Laplacian is not a curvature) get 0.

@@ -127,8 +127,7 @@ fn no_import_cycle_between_top_level_modules() {
     let graph = module_graph(&modules);
     assert!(graph["pipeline"].contains("methods"), "the scan finds imports: {graph:?}");
     // Kahn's algorithm: whatever is left has a cycle.
-    let mut left: BTreeMap<&String, BTreeSet<&String>> =
-        graph.iter().map(|(k, v)| (k, v.iter().collect())).collect();
+    let mut left: BTreeMap<&String, BTreeSet<&String>> = graph.iter().map(|(k, v)| (k, v.iter().collect())).collect();
     loop {
         let free: Vec<&String> = left.iter().filter(|(_, v)| v.is_empty()).map(|(k, _)| *k).collect();
         if free.is_empty() {
@@ -176,9 +175,9 @@ fn functions(text: &str) -> Vec<(String, usize, usize)> {
         let t = c.trim_start();
         let Some(pos) = t.find("fn ") else { continue };
         let head = &t[..pos];
-        let words_ok = head.split_whitespace().all(|w| {
-            w.starts_with("pub") || ["const", "async", "unsafe", "extern", "\"C\"", "default"].contains(&w)
-        });
+        let words_ok = head
+            .split_whitespace()
+            .all(|w| w.starts_with("pub") || ["const", "async", "unsafe", "extern", "\"C\"", "default"].contains(&w));
         if !words_ok || !(pos == 0 || t[..pos].ends_with(' ')) {
             continue;
         }

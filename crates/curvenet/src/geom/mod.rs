@@ -2,6 +2,7 @@
 //! orthonormal frames and segment–segment closest points.
 
 pub mod mesh;
+pub mod polyline;
 
 pub use glam::{DVec2, DVec3};
 

@@ -203,6 +203,16 @@ fn closest_on_ellipsoid(e: DVec3, p: DVec3) -> DVec3 {
     DVec3::new(e2.x * p.x / (e2.x + t), e2.y * p.y / (e2.y + t), e2.z * p.z / (e2.z + t))
 }
 
+/// The median of `values` (the upper one of an even count; NaN for none): benchmarks report
+/// medians of repeated runs.
+pub fn median(mut values: Vec<f64>) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
 /// Summary of a set of distances.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct DistanceStats {

@@ -1,6 +1,6 @@
 //! Stage 1, the mesh: the input checked ([`check_mesh`]) and repaired ([`Mesh::repaired`]):
 //! vertices at the same position welded, cracks zipped ([`zip_cracks`]), pinch vertices split
-//! ([`split_pinches`]); then its angle-weighted vertex normals ([`vertex_normals`]) and the
+//! ([`split_pinches`]); then its angle-weighted vertex normals ([`crate::operators::angle_weighted_normals`]) and the
 //! faces around each edge, which must be at most two (a 2-manifold with boundary).
 
 use crate::error::{Error, Result};
@@ -16,7 +16,7 @@ pub(super) struct Mesh {
     pub(super) positions: Vec<DVec3>,
     /// Triangles, counter-clockwise seen from outside, none degenerate in its indices.
     pub(super) faces: Vec<[u32; 3]>,
-    /// Unit angle-weighted vertex normals ([`vertex_normals`]).
+    /// Unit angle-weighted vertex normals ([`crate::operators::angle_weighted_normals`]).
     pub(super) normals: Vec<DVec3>,
     /// The faces around each edge ([`EdgeFaces`]).
     pub(super) edge_faces: EdgeFaces,
@@ -71,7 +71,7 @@ impl Mesh {
         let mut moved = positions.to_vec();
         let zipped = zip_cracks(&mut moved, &mut welded, near);
         let pinches = split_pinches(&mut moved, &mut welded, near);
-        let normals = vertex_normals(&moved, &welded);
+        let normals = crate::operators::angle_weighted_normals(&welded, &moved);
         let edge_faces = edge_faces(&welded);
         check_manifold(&edge_faces, positions.len())?;
         Ok((Mesh { positions: moved, faces: welded, normals, edge_faces }, Repairs { zipped, pinches }))
@@ -134,27 +134,6 @@ fn check_manifold(edge_faces: &EdgeFaces, input_vertices: usize) -> Result<()> {
         return Err(if (e.0 as usize) < input_vertices { err.vertex(e.0 as usize) } else { err });
     }
     Ok(())
-}
-
-/// Angle-weighted vertex normals (each face's unit normal weighted by its corner angle), unit
-/// length; zero for a vertex of degenerate faces only.
-pub fn vertex_normals(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<DVec3> {
-    let mut n = vec![DVec3::ZERO; positions.len()];
-    for f in faces {
-        let p = f.map(|i| positions[i as usize]);
-        let fnrm = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
-        if fnrm == DVec3::ZERO {
-            continue;
-        }
-        for k in 0..3 {
-            let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
-            let angle = a.angle_between(b);
-            if angle.is_finite() {
-                n[f[k] as usize] += angle * fnrm;
-            }
-        }
-    }
-    n.iter().map(|v| v.normalize_or_zero()).collect()
 }
 
 /// The key of the undirected edge between vertices `a` and `b`: the smaller index first.

@@ -53,7 +53,7 @@ mod streamlines;
 
 pub use cut::SHARP_TURN_DEG;
 use mesh::Mesh;
-pub use mesh::{split_pinches, vertex_normals, zip_cracks};
+pub use mesh::{split_pinches, zip_cracks};
 pub use network::{remove_hairpins, CORNER_DEG};
 pub use planes::{section_directions, MAX_PLANE_MOVES, MIN_CROSSING_ANGLE_DEG};
 

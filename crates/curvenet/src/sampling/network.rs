@@ -68,13 +68,7 @@ pub(super) fn resample(raw: &[Raw], closed: bool, spacing: f64, keep_nodes: bool
     if closed {
         pts.push(pts[0]);
     }
-    let arc_of = |pts: &[Raw]| {
-        let mut arc = vec![0.0; pts.len()];
-        for i in 1..pts.len() {
-            arc[i] = arc[i - 1] + pts[i].p.distance(pts[i - 1].p);
-        }
-        arc
-    };
+    let arc_of = |pts: &[Raw]| crate::geom::polyline::arc_lengths(pts, |a, b| b.p.distance(a.p));
     let reach = 0.3 * spacing;
     let mut corner = corners(&pts, &arc_of(&pts), closed, reach);
     // A corner next to a kept node would make a tiny edge: the node is enough.
@@ -123,9 +117,7 @@ fn finish(
 ) -> (Vec<DVec3>, Vec<DVec3>) {
     let m = pts.len();
     let at = |s: f64| -> (DVec3, DVec3) {
-        let k = arc.partition_point(|&a| a <= s).clamp(1, m - 1) - 1;
-        let len = arc[k + 1] - arc[k];
-        let t = if len > 0.0 { ((s - arc[k]) / len).clamp(0.0, 1.0) } else { 0.0 };
+        let (k, t) = crate::geom::polyline::locate(arc, s);
         (pts[k].p.lerp(pts[k + 1].p, t), pts[k].n.lerp(pts[k + 1].n, t))
     };
     let mut out_p = Vec::new();

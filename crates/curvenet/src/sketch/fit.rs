@@ -203,7 +203,7 @@ pub fn fit(positions: &[DVec3], faces: &[[u32; 3]], o: &FitOptions) -> Result<(C
     let mut b = system.rhs(positions, &ghosts);
     f.solve_in_place(&mut b);
     let out = system.scatter(&b, positions);
-    crate::methods::andrews2011::system::check_finite(&out)?;
+    crate::methods::check_finite(&out, "Cauchy solve")?;
     let d: Vec<f64> = out.iter().zip(positions).map(|(a, b)| a.distance(*b)).collect();
     let diagonal = crate::geom::Aabb::of(positions.iter().copied()).diagonal();
     let report = FitReport {

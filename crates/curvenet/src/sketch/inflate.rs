@@ -96,21 +96,14 @@ fn resample(points: &[DVec2], closed: bool, d: f64) -> Vec<DVec2> {
     if closed {
         pts.push(points[0]);
     }
-    // Cumulative arc length at each point.
-    let mut acc = Vec::with_capacity(pts.len());
-    let mut total = 0.0;
-    acc.push(0.0);
-    for w in pts.windows(2) {
-        total += w[0].distance(w[1]);
-        acc.push(total);
-    }
+    let acc = crate::geom::polyline::arc_lengths(&pts, |a, b| a.distance(*b));
+    let total = acc[acc.len() - 1];
     let n = ((total / d).round() as usize).max(if closed { 3 } else { 1 });
     let count = if closed { n } else { n + 1 };
     (0..count)
         .map(|k| {
             let s = total * k as f64 / n as f64;
-            let i = (acc.partition_point(|&a| a <= s).max(1) - 1).min(pts.len() - 2);
-            let t = ((s - acc[i]) / (acc[i + 1] - acc[i]).max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+            let (i, t) = crate::geom::polyline::locate(&acc, s);
             pts[i].lerp(pts[i + 1], t)
         })
         .collect()

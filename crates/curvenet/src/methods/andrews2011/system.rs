@@ -339,7 +339,7 @@ impl System {
         let mut b = self.rhs(positions, ghosts);
         f.solve_in_place(&mut b);
         let out = self.scatter(&b, positions);
-        check_finite(&out)?;
+        crate::methods::check_finite(&out, "Cauchy solve")?;
         Ok(out)
     }
 
@@ -372,7 +372,7 @@ impl System {
             f.solve_in_place(&mut b);
             out = self.scatter(&b, positions);
         }
-        check_finite(&out)?;
+        crate::methods::check_finite(&out, "Cauchy solve")?;
         Ok(out)
     }
 
@@ -383,15 +383,6 @@ impl System {
             out[v as usize] = DVec3::new(x[(r, 0)], x[(r, 1)], x[(r, 2)]);
         }
         out
-    }
-}
-
-pub(crate) fn check_finite(p: &[DVec3]) -> Result<()> {
-    match p.iter().position(|v| !v.is_finite()) {
-        Some(i) => {
-            Err(Error::numerical(format!("Cauchy solve: vertex {i} is not finite; the system is ill-conditioned")))
-        }
-        None => Ok(()),
     }
 }
 

@@ -203,9 +203,7 @@ pub(super) fn polyline_at_arc(points: &[DVec3], arc: &[f64], closed: bool, s: f6
     } else {
         return None;
     };
-    let e = (arc.partition_point(|&x| x <= s).max(1) - 1).min(arc.len() - 2);
-    let len = arc[e + 1] - arc[e];
-    let t = if len > 0.0 { (s - arc[e]) / len } else { 0.0 };
+    let (e, t) = crate::geom::polyline::locate(arc, s);
     Some(points[e].lerp(points[(e + 1) % points.len()], t))
 }
 

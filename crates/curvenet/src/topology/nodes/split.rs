@@ -55,7 +55,7 @@ pub(super) fn place_nodes(lines: &Polylines, c: usize, list: &[(f64, usize)]) ->
     let wrapped: Vec<f64> = list.iter().map(|&(a, _)| wrap(a)).collect();
     for &(a, node) in list.iter() {
         let a = wrap(a);
-        let e = (arc.partition_point(|&x| x <= a).max(1) - 1).min(arc.len() - 2);
+        let (e, _) = crate::geom::polyline::locate(arc, a);
         let len = arc[e + 1] - arc[e];
         let (d0, d1) = (a - arc[e], arc[e + 1] - a);
         let lim = 0.25 * len;
