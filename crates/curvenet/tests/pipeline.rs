@@ -268,3 +268,17 @@ fn triangulations_have_good_angles() {
     // fall below the refinement's 25°.
     assert!(small < 50, "{small} angles below 25°");
 }
+
+/// A coarse torus with conformal patching: at 1000 vertices its first, coarse solution (twice
+/// the spacing) has overlapping patches; it is made at the spacing itself instead, and the
+/// surface comes out (it was an error: `study accuracy` could not start its convergence table).
+#[test]
+fn coarse_torus_with_conformal_patching() {
+    let net = example("torus").unwrap();
+    let truth = example_truth("torus").unwrap();
+    for vertices in [600, 1000, 1200] {
+        let s = surface(&net, &Options::default().with_vertices(vertices)).unwrap();
+        let e = distance_to_truth(&s.mesh.positions, s.mesh.num_curve, &truth);
+        assert!(e.mean < 0.05, "{vertices} vertices: mean {}", e.mean);
+    }
+}

@@ -204,7 +204,13 @@ fn conformal_stage(
     st: &mut SolveTimings,
     progress: Progress<'_>,
 ) -> Result<(Mesh, f64, Vec<[usize; 4]>)> {
-    let (coarse_res, coarse) = planar_stage(topo, 2.0 * d, timings)?;
+    let (coarse_res, coarse) = match planar_stage(topo, 2.0 * d, timings) {
+        Ok(stage) => stage,
+        // Twice the spacing is too coarse for this network (its patches overlap, e.g. the
+        // torus at 1000 vertices): the first solution at the spacing itself.
+        Err(Error::Topology { .. }) => planar_stage(topo, d, timings)?,
+        Err(e) => return Err(e),
+    };
     topo.warnings.extend(fold_warnings(&coarse));
     // The first solution only shapes the flattening: normal-control whatever the method.
     let ops = cotan_operators(&coarse, Metric::Planar, &coarse.positions);
