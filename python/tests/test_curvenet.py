@@ -194,6 +194,15 @@ def test_options_come_from_the_library():
 
 @pytest.mark.parametrize("method", ["normal-control", "biharmonic", "triharmonic", "method4", "short-paper",
                                     "cauchy"])
+def test_surfacer_every_method_default_options(method):
+    # The default preset and size, as a user calls it.
+    V, F, info = curvenet.Surfacer(curvenet.example("sphere"), method=method).solve()
+    assert info["method"] == method and 15000 < len(V) < 25000
+    assert np.abs(np.linalg.norm(V, axis=1) - 1).max() < 0.2
+
+
+@pytest.mark.parametrize("method", ["normal-control", "biharmonic", "triharmonic", "method4", "short-paper",
+                                    "cauchy"])
 def test_surfacer_every_method(method):
     net = curvenet.example("saddle")
     s = curvenet.Surfacer(net, method=method, preset="fast", vertices=2000)

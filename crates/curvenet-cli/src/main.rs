@@ -28,7 +28,8 @@ use std::process::ExitCode;
 
 // Large buffers (factors, right-hand sides) are allocated and freed many times a run; mimalloc
 // keeps them out of repeated mmap/munmap and first-touch page faults (measured in
-// docs/performance.md, "Allocator"; `--no-default-features` builds with the system's).
+// the README, "Speed": it pays at 10k and 100k --fast, is neutral at 100k default;
+// `--no-default-features` builds with the system's).
 #[cfg(feature = "mimalloc")]
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;

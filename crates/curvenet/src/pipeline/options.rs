@@ -51,7 +51,8 @@ pub struct MeshOptions {
     /// `snap`: curves closer than this meet at a node, also between samples. `None`: the
     /// network's `snap`, else [`crate::Network::snap_tolerance`].
     pub snap: Option<f64>,
-    /// `patching`: the domain each patch is triangulated in. Default [`Patching::Conformal`].
+    /// `patching`: the domain each patch is triangulated in. Default
+    /// [`MeshOptions::DEFAULT_PATCHING`].
     pub patching: Patching,
 }
 
@@ -60,11 +61,14 @@ impl MeshOptions {
     pub const DEFAULT_VERTICES: usize = 20_000;
     /// Largest mesh a run may create (a guard against a mistyped spacing).
     pub const MAX_VERTICES: f64 = 5e7;
+    /// Default `patching`: the conformal flattening (4× more accurate than the projection on
+    /// the sphere, docs/accuracy.md).
+    pub const DEFAULT_PATCHING: Patching = Patching::Conformal;
 }
 
 impl Default for MeshOptions {
     fn default() -> Self {
-        MeshOptions { spacing: None, vertices: None, snap: None, patching: Patching::Conformal }
+        MeshOptions { spacing: None, vertices: None, snap: None, patching: Self::DEFAULT_PATCHING }
     }
 }
 

@@ -1,6 +1,6 @@
 //! Factor once, solve many: a sparse Cholesky factorisation (faer's supernodal `LLᵀ` with AMD
 //! ordering) of the SPD system on the unknown vertices, reused for every right-hand side
-//! (DESIGN §1, last convention). Hard constraints are eliminated before the factorisation.
+//! (docs/design.md §1, last convention; §8). Hard constraints are eliminated before the factorisation.
 
 use super::tree_solve;
 use crate::error::{Error, Result};
