@@ -170,8 +170,9 @@ fn to_array(p: &[DVec3]) -> Array2<f64> {
 #[derive(Clone)]
 struct PyNetwork {
     inner: curvenet::Network,
-    /// The per-curve attributes of `method="cauchy"` when read from a JSON file.
-    attributes: Option<std::sync::Arc<curvenet::methods::andrews2011::NetworkAttributes>>,
+    /// The file it was read from: `method="cauchy"` reads its per-curve attributes from it (as
+    /// the command line does, only for that method).
+    source: Option<std::path::PathBuf>,
 }
 
 #[pymethods]
@@ -191,7 +192,7 @@ impl PyNetwork {
                 boundary: *boundary,
             });
         }
-        Ok(PyNetwork { inner: curvenet::Network { curves: out, snap }, attributes: None })
+        Ok(PyNetwork { inner: curvenet::Network { curves: out, snap }, source: None })
     }
 
     /// The curves as `(points, normals, closed, boundary)` tuples (copies).
@@ -228,16 +229,14 @@ impl PyNetwork {
 #[pyfunction]
 fn read_network(path: &str) -> PyResult<PyNetwork> {
     let inner = curvenet::io::read_network(Path::new(path)).map_err(err)?;
-    let attributes =
-        curvenet::methods::andrews2011::NetworkAttributes::read(Path::new(path)).map_err(err)?.map(std::sync::Arc::new);
-    Ok(PyNetwork { inner, attributes })
+    Ok(PyNetwork { inner, source: Some(Path::new(path).to_path_buf()) })
 }
 
 #[pyfunction]
 fn example(name: &str) -> PyResult<PyNetwork> {
     let names: Vec<&str> = curvenet::network::examples::EXAMPLES.iter().map(|e| e.0).collect();
     match curvenet::network::examples::example(name) {
-        Some(inner) => Ok(PyNetwork { inner, attributes: None }),
+        Some(inner) => Ok(PyNetwork { inner, source: None }),
         None => Err(usage(format!("unknown example \"{name}\"; the examples are: {}", names.join(", ")))),
     }
 }
@@ -304,14 +303,15 @@ fn result<'py>(py: Python<'py>, s: curvenet::Surface) -> PyResult<Bound<'py, pyo
     pyo3::types::PyTuple::new(py, [v.into_any(), f.into_any(), info.into_any()])
 }
 
-/// `options` with the network's per-curve attributes for `method="cauchy"` (as the command
-/// line reads them from the same JSON file).
-fn with_attributes(network: &PyNetwork, options: &Options) -> Options {
+/// `options` with the per-curve attributes of the network's file for `method="cauchy"` (as the
+/// command line reads them from the same JSON file, for that method only).
+fn with_attributes(network: &PyNetwork, options: &Options) -> PyResult<Options> {
     let mut o = options.clone();
-    if o.cauchy.attributes.is_none() {
-        o.cauchy.attributes = network.attributes.clone();
+    if let (curvenet::Method::Cauchy, None, Some(path)) = (o.method, &o.cauchy.attributes, &network.source) {
+        o.cauchy.attributes =
+            curvenet::methods::andrews2011::NetworkAttributes::read(path).map_err(err)?.map(std::sync::Arc::new);
     }
-    o
+    Ok(o)
 }
 
 #[pyfunction]
@@ -320,7 +320,7 @@ fn _surface<'py>(
     network: &PyNetwork,
     options: &PyOptions,
 ) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
-    let opts = with_attributes(network, &options.inner);
+    let opts = with_attributes(network, &options.inner)?;
     let net = &network.inner;
     let s = py.detach(|| curvenet::surface(net, &opts)).map_err(err)?;
     result(py, s)
@@ -337,7 +337,7 @@ struct PySurfacer {
 impl PySurfacer {
     #[new]
     fn new(py: Python<'_>, network: &PyNetwork, options: &PyOptions) -> PyResult<Self> {
-        let opts = with_attributes(network, &options.inner);
+        let opts = with_attributes(network, &options.inner)?;
         let net = &network.inner;
         let inner = py.detach(|| curvenet::Surfacer::new(net, &opts)).map_err(err)?;
         Ok(PySurfacer { inner })
@@ -361,7 +361,7 @@ impl PySurfacer {
 
     #[getter]
     fn network(&self) -> PyNetwork {
-        PyNetwork { inner: self.inner.network().clone(), attributes: None }
+        PyNetwork { inner: self.inner.network().clone(), source: None }
     }
 
     #[getter]

@@ -36,7 +36,7 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 const AFTER_HELP: &str = "\
 Exit codes: 0 success, 1 bad input (malformed file, invalid network, non-manifold curves, I/O),
-2 usage error, 3 numerical failure.
+2 usage error, 3 numerical failure, 4 internal error (a bug: please report it with the input).
 
 Network formats (by extension): .json (reference), .obj (v/vn/l, group \"boundary\"), .net.
 Mesh formats (by extension): .ply (binary, with normals, mean curvature, curve flag), .obj, .off.

@@ -18,8 +18,8 @@
 //!
 //! **Option names in messages.** Messages name options by their library name in backticks,
 //! `` `spacing` ``, the same name in every front end ([`crate::pipeline::options`]); each front
-//! end respells them for its users ([`Error::spelled`]: `--spacing` on the command line,
-//! `spacing=` in Python).
+//! end may respell them for its users ([`Error::spelled`]: `--spacing` on the command line;
+//! Python keeps `` `spacing` ``, its keyword's name).
 
 use std::fmt;
 

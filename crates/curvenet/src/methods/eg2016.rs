@@ -52,7 +52,7 @@ pub struct ShortPaperParams {
 /// of its own system between solves.
 pub struct ShortPaper {
     /// The weights of every solve.
-    pub params: ShortPaperParams,
+    params: ShortPaperParams,
     propagation: Option<Eliminated>,
     /// The system's matrix (kept for the residual check) and factorisation.
     system: Option<(Csc, Eliminated)>,
@@ -72,10 +72,14 @@ impl SurfacingMethod for ShortPaper {
 
     fn solve(&mut self, mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<MethodResult> {
         let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
-        let Propagation { v_star, n_star, system } = propagate(mesh, ops, t, self.propagation.take())?;
-        self.propagation = system;
         let params = self.params;
         let first = if params.omega0.is_some() { 0 } else { nc };
+        let kept = self.system.take().filter(|s| s.1.dim() == n - first);
+        let propagation = self.propagation.take().filter(|s| s.dim() == n - nc);
+        let Propagation { v_star, n_star, system } = propagate(mesh, ops, t, propagation)?;
+        // The first solve frees the propagation's factor before factorising its own (peak
+        // memory as one factor); later solves keep both.
+        self.propagation = if kept.is_some() { system } else { None };
         if n == first {
             return Ok(MethodResult { positions: v_star, propagated_normals: Some(n_star), guide_curvature: None });
         }
@@ -86,7 +90,7 @@ impl SurfacingMethod for ShortPaper {
         let tt = product(&ops.ls, &inv_m, &ops.ls, 0);
         // Guide: rows of open-border vertices left out, as in normal-control.
         let w: Vec<f64> = (0..n).map(|k| if mesh.on_boundary[k] { 0.0 } else { inv_m[k] }).collect();
-        let (q, system) = match self.system.take() {
+        let (q, system) = match kept {
             Some(s) => {
                 t.operators += seconds_since(clock);
                 s

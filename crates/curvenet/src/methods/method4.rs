@@ -47,13 +47,18 @@ impl SurfacingMethod for Method4 {
 
     fn solve(&mut self, mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<MethodResult> {
         let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
-        let Propagation { v_star, n_star, system } = propagate(mesh, ops, t, self.propagation.take())?;
-        self.propagation = system;
+        let free = n - nc;
+        let laplacian = self.laplacian.take().filter(|s| s.dim() == free);
+        let propagation = self.propagation.take().filter(|s| s.dim() == free);
+        let Propagation { v_star, n_star, system } = propagate(mesh, ops, t, propagation)?;
+        // The first solve frees the propagation's factor before factorising its own (peak
+        // memory as one factor); later solves keep both.
+        self.propagation = if laplacian.is_some() { system } else { None };
         if n == nc {
             return Ok(MethodResult { positions: v_star, propagated_normals: Some(n_star), guide_curvature: None });
         }
         let (h, u_curve) = timed(&mut t.operators, || boundary_values(mesh, ops, &v_star, &n_star));
-        let laplacian = match self.laplacian.take() {
+        let laplacian = match laplacian {
             Some(s) => s,
             None => {
                 let k = timed(&mut t.operators, || ops.ls.restrict(nc, -1.0));

@@ -206,7 +206,8 @@ pub(crate) fn check_finite(p: &[DVec3], what: &str) -> crate::error::Result<()> 
     if let Some(i) = p.iter().position(|v| !v.is_finite()) {
         return Err(crate::error::Error::numerical(format!(
             "{what}: vertex {i} is not finite; the system is ill-conditioned"
-        )));
+        ))
+        .vertex(i));
     }
     Ok(())
 }

@@ -90,7 +90,7 @@ pub(crate) struct Propagation {
 #[derive(Default)]
 pub struct NormalControl {
     /// The parameters of every solve.
-    pub params: NormalControlParams,
+    params: NormalControlParams,
     /// `(Ls M⁻¹ Ls)_ff` of the propagation.
     propagation: Option<Eliminated>,
     /// The fit's matrix when it differs from the propagation's (open borders, uniform
@@ -111,6 +111,15 @@ impl SurfacingMethod for NormalControl {
     }
 
     fn solve(&mut self, mesh: &Mesh, ops: &Operators, t: &mut SolveTimings) -> Result<MethodResult> {
+        // Factorisations of another mesh (another number of unknowns) are not reused.
+        let free = mesh.num_vertices() - mesh.num_curve;
+        if self.propagation.as_ref().is_some_and(|s| s.dim() != free) {
+            self.propagation = None;
+        }
+        let fit_dim = if self.params.soft_weight.is_some() { mesh.num_vertices() } else { free };
+        if self.fit.as_ref().is_some_and(|s| s.dim() != fit_dim) {
+            self.fit = None;
+        }
         let params = self.params;
         normal_control_cached(mesh, ops, &params, t, self)
     }

@@ -18,7 +18,7 @@ use faer::Mat;
 /// between solves.
 pub struct Polyharmonic {
     /// 2 (biharmonic) or 3 (triharmonic).
-    pub order: usize,
+    order: usize,
     system: Option<Eliminated>,
 }
 
@@ -46,7 +46,7 @@ impl SurfacingMethod for Polyharmonic {
         }
         let order = self.order;
         let rhs = timed(&mut t.operators, || rhs(ops, order, &known_rows(n, nc, &[&mesh.positions]), nc));
-        let system = match self.system.take() {
+        let system = match self.system.take().filter(|s| s.dim() == n - nc) {
             Some(s) => s,
             None => {
                 let q = timed(&mut t.operators, || matrix(ops, order, nc));

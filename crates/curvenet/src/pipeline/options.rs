@@ -471,7 +471,7 @@ pub const OPTIONS: &[OptionSpec] = &[
         value_name: "S",
         choices: &[],
         help: "Snapping tolerance: curves closer than S meet at a node, also between samples.",
-        unset: Some("the network's `snap`, else the larger of 1e-3 × its bounding-box diagonal and 0.1 × the mean sample spacing"),
+        unset: Some("the network's own snap value, else the larger of 1e-3 × its bounding-box diagonal and 0.1 × the mean sample spacing"),
         aliases: &[],
         set: |o, v| {
             o.mesh.snap = Some(number(v).ok().filter(|s| *s > 0.0).ok_or("a positive distance")?);

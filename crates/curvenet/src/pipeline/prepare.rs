@@ -1,4 +1,4 @@
-//! The stages before the final solve (\[CG\] §3.1–3.3; docs/design.md §1, steps 1–6): validate
+//! The stages before the final solve (\[CG\] §3.1–3.3; docs/design.md §1, steps 1–7): validate
 //! the options and the network, find the nodes and segments, fit the splines, trace the
 //! cycles, choose the spacing, resample and tessellate — with planar projections, or with a
 //! coarse first solve whose conformal flattening the patches are triangulated in.
@@ -265,7 +265,12 @@ fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
     curves.dedup();
     let list = |v: &[String]| if v.is_empty() { "interior vertices".to_string() } else { v.join(" and ") };
     let patches: Vec<String> = patches.iter().map(|p| p.to_string()).collect();
-    let segment = [a, b].iter().find_map(|&v| res.segment_vertices.iter().position(|sv| sv.contains(&v)));
+    // The segment the bad edge lies on (both ends on it), else one through either end.
+    let segment = res
+        .segment_vertices
+        .iter()
+        .position(|sv| sv.contains(&a) && sv.contains(&b))
+        .or_else(|| [a, b].iter().find_map(|&v| res.segment_vertices.iter().position(|sv| sv.contains(&v))));
     let e = Error::topology(format!(
         "patches {} overlap near {} (an edge of {} in {} triangles): the curves come closer than the \
          mesh spacing between crossings, or a patch folds onto its neighbour; give a smaller `spacing`, \

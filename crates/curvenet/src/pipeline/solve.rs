@@ -1,4 +1,4 @@
-//! The final solve on a prepared mesh (\[CG\] §3.4; docs/design.md §1, steps 7–10): the
+//! The final solve on a prepared mesh (\[CG\] §3.4; docs/design.md §1, steps 8–13): the
 //! operators of the patches' domains, the method ([`crate::methods::SurfacingMethod`]), then
 //! normal-control's 3D iterations, then the result's normals, curvature and statistics.
 

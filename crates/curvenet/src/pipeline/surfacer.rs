@@ -127,6 +127,11 @@ impl Surfacer {
         self.prepared.mesh.positions[..res.positions.len()].copy_from_slice(&res.positions);
         self.prepared.mesh.curve_normals = res.normals;
         self.prepared.curves = net.curves.iter().map(|c| (c.points.clone(), c.closed)).collect();
+        self.prepared.input_spacing = net.mean_sample_spacing();
+        if self.options.soft.is_some() {
+            // The soft weight is scaled by the input sample spacing: a new system.
+            self.kept = None;
+        }
         if let Some(k) = self.kept.as_mut() {
             k.set_curves(&self.prepared.curves);
         }

@@ -100,6 +100,10 @@ impl Cholesky {
                 });
                 // A failed pivot names the patch of its unknown.
                 Self::factor_named(q, what, order.as_deref(), &|j| format!("free vertex {j} of patch {}", p[j]))
+                    .map_err(|e| match e.at().vertex.and_then(|j| p.get(j)) {
+                        Some(&patch) => e.patch(patch as usize),
+                        None => e,
+                    })
             }
             _ => Self::factor(q, what),
         }
@@ -274,7 +278,7 @@ fn numeric(
             Default::default(),
         )
         .map_err(|e| {
-            let at = match e {
+            let unknown = match e {
                 faer::linalg::solvers::LltError::NonPositivePivot { index } => {
                     // faer's `index` is 1-based, in the elimination order; map it back to the
                     // caller's unknown (guarded: a pivot we cannot place is reported unplaced).
@@ -283,13 +287,18 @@ fn numeric(
                         Some(p) => p.arrays().0.get(k).map(|&j| j as usize),
                         None => (k < a.ncols()).then_some(k),
                     }
-                    .map_or_else(String::new, |j| format!(" at {}", describe(j)))
                 }
             };
-            Error::numerical(format!(
+            let at = unknown.map_or_else(String::new, |j| format!(" at {}", describe(j)));
+            let e = Error::numerical(format!(
                 "{what}: the system is singular or indefinite{at}; the patch may have no constrained vertex, \
                  or degenerate triangles"
-            ))
+            ));
+            // The id is the unknown's index here; [`crate::solve::Eliminated`] makes it the vertex.
+            match unknown {
+                Some(j) => e.vertex(j),
+                None => e,
+            }
         })?;
     if values.iter().any(|v| !v.is_finite()) {
         return Err(Error::numerical(format!("{what}: the factorisation produced non-finite values")));

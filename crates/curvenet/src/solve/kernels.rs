@@ -149,6 +149,8 @@ pub(super) fn backward_generic<const AVX2: bool>(block: &[f64], w: usize, h: usi
 fn axpy4<const AVX2: bool>(y: &mut [f64], b: [&[f64]; 4], a: [f64; 4]) {
     let m = y.len();
     let b = b.map(|c| &c[..m]);
+    // Advanced by the vector loop on x86-64 only.
+    #[cfg_attr(not(target_arch = "x86_64"), allow(unused_mut))]
     let mut i = 0;
     #[cfg(target_arch = "x86_64")]
     if AVX2 {

@@ -88,14 +88,26 @@ impl Eliminated<Cholesky> {
     /// Errors with [`crate::Error::Numerical`] when the matrix is not numerically positive
     /// definite (a patch without a constrained vertex, degenerate triangles).
     pub fn factor(q_uu: &Csc, first: usize, parts: Option<&[u32]>, what: &str) -> Result<Self> {
-        Ok(Eliminated { first, factor: Cholesky::factor_in_parts(q_uu, what, parts)? })
+        let factor = Cholesky::factor_in_parts(q_uu, what, parts).map_err(|e| {
+            // A failed pivot names its unknown: the vertex is `first` rows further.
+            match e.at().vertex {
+                Some(j) => e.vertex(first + j),
+                None => e,
+            }
+        })?;
+        Ok(Eliminated { first, factor })
     }
 
     /// The factorisation of `q_uu`, a matrix with the same unknowns and (usually) the same
     /// pattern as this one's: only the numeric factorisation when the pattern is the same,
     /// reusing the symbolic analysis (ordering, elimination tree, supernodes).
     pub fn refactor(&self, q_uu: &Csc, what: &str) -> Result<Self> {
-        Ok(Eliminated { first: self.first, factor: self.factor.refactor(q_uu, what)? })
+        let first = self.first;
+        let factor = self.factor.refactor(q_uu, what).map_err(|e| match e.at().vertex {
+            Some(j) => e.vertex(first + j),
+            None => e,
+        })?;
+        Ok(Eliminated { first, factor })
     }
 }
 

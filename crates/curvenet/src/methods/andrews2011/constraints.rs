@@ -350,20 +350,22 @@ pub fn domain_edges(
 /// constraints of [`curve_constraints`], cotangent weights of the patches' planar domains, as a
 /// [`SurfacingMethod`]. The system and its LU factorisation depend on the vertex roles and the
 /// domain, not on the curve normals (they enter the ghost positions, the right-hand side): a
-/// solve with new normals reuses them; new curve positions that change the roles or the
-/// domain's edge lengths build a new system.
+/// solve with new normals reuses them; new curve positions build a new system (the
+/// micro-Laplacians' lengths fall back to the mesh positions where the domain gives none).
 pub struct Andrews2011 {
     /// The network's curves (points, closed): where the curve vertices lie on them.
-    pub curves: Vec<(Vec<DVec3>, bool)>,
+    curves: Vec<(Vec<DVec3>, bool)>,
     /// The user's settings, with the per-curve attributes.
-    pub options: super::CauchyOptions,
+    options: super::CauchyOptions,
     /// Which curves meet at a vertex (the run's snapping tolerance).
-    pub snap: f64,
+    snap: f64,
     /// Roles, domain edge lengths, system and factorisation of the last solve.
     kept: Option<Kept>,
 }
 
 struct Kept {
+    /// The curve vertices' positions the system was built for.
+    curve_positions: Vec<DVec3>,
     roles: Vec<Role>,
     edge_lengths: Vec<((u32, u32), f64)>,
     system: System,
@@ -392,7 +394,11 @@ impl SurfacingMethod for Andrews2011 {
         let edges = domain_edges(mesh, &roles, &params);
         let mut edge_lengths: Vec<((u32, u32), f64)> = edges.iter().map(|(&k, &(_, len))| (k, len)).collect();
         edge_lengths.sort_unstable_by_key(|e| e.0);
-        let reuse = self.kept.take().filter(|k| k.roles == roles && k.edge_lengths == edge_lengths);
+        let curve_positions = &mesh.positions[..mesh.num_curve];
+        let reuse = self
+            .kept
+            .take()
+            .filter(|k| k.roles == roles && k.edge_lengths == edge_lengths && k.curve_positions == curve_positions);
         let kept = match reuse {
             Some(k) => {
                 t.operators += seconds_since(clock);
@@ -404,7 +410,7 @@ impl SurfacingMethod for Andrews2011 {
                 let system = System::build(&stencil, &roles, self.options.order, MicroWeight::Consistent)?;
                 t.operators += seconds_since(clock);
                 let factored = timed(&mut t.factor, || system.factor())?;
-                Kept { roles, edge_lengths, system, factored }
+                Kept { curve_positions: curve_positions.to_vec(), roles, edge_lengths, system, factored }
             }
         };
         let clock = Instant::now();
@@ -436,5 +442,21 @@ impl SurfacingMethod for Andrews2011 {
 
     fn set_curves(&mut self, curves: &[(Vec<DVec3>, bool)]) {
         self.curves = curves.to_vec();
+        // The curve vertices are located on the attributes' samples when there are attributes:
+        // those move too (per-sample values stay with their samples).
+        if let Some(a) = &self.options.attributes {
+            let mut moved = (**a).clone();
+            for (c, (points, _)) in moved.curves.iter_mut().zip(curves) {
+                if c.points.len() == points.len() {
+                    c.points = points.clone();
+                }
+            }
+            self.options.attributes = Some(std::sync::Arc::new(moved));
+        }
+        self.kept = None;
     }
 }
+
+#[cfg(test)]
+#[path = "tests/constraints.rs"]
+mod tests;

@@ -63,6 +63,12 @@ fn named_values_override_the_preset_and_bad_ones_are_usage_errors() {
 }
 
 #[test]
+fn the_unset_vertices_text_is_the_default() {
+    let spec = OPTIONS.iter().find(|s| s.name == "vertices").unwrap();
+    assert_eq!(spec.default_text(), MeshOptions::DEFAULT_VERTICES.to_string());
+}
+
+#[test]
 fn every_option_has_help_and_a_default() {
     for spec in OPTIONS {
         assert!(spec.help.len() > 20, "{}", spec.name);

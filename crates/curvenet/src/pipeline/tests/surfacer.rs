@@ -103,6 +103,36 @@ fn every_method_resolves_after_moved_points() {
     }
 }
 
+/// With soft constraints the weight is scaled by the input sample spacing: after the rim moves
+/// the surfacer measures it again and rebuilds the system.
+#[test]
+fn soft_constraints_follow_moved_points() {
+    let network = example("saddle").unwrap();
+    let options = Options { soft: Some(1.5), ..Options::fast() }.with_vertices(2000);
+    let mut s = Surfacer::new(&network, &options).unwrap();
+    let first = s.solve().unwrap();
+    let stretched: Vec<DVec3> = network.curves[0]
+        .points
+        .iter()
+        .map(|p| {
+            let s = (2.0 * p.y.atan2(p.x)).sin();
+            *p + DVec3::new(0.0, 0.0, 0.3 * s * s)
+        })
+        .collect();
+    s.update_points(0, &stretched).unwrap();
+    assert!(!s.is_factored(), "the soft system is rebuilt");
+    let mut net = network.clone();
+    net.curves[0].points = stretched;
+    let (valid, _) = net.validated().unwrap();
+    assert_eq!(s.prepared.input_spacing, valid.mean_sample_spacing());
+    let again = s.solve().unwrap();
+    let fresh =
+        solve_prepared(std::borrow::Cow::Borrowed(&s.prepared), &options, &mut |_, _, _| {}, None, Timings::default())
+            .unwrap();
+    assert!(max_distance(&again.mesh.positions, &fresh.mesh.positions) <= 1e-10);
+    assert!(max_distance(&again.mesh.positions, &first.mesh.positions) > 0.05);
+}
+
 #[test]
 fn moving_a_crossing_is_a_topology_error() {
     let network = example("saddle").unwrap();
