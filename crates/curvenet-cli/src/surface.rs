@@ -6,7 +6,7 @@ use clap::Args;
 use curvenet::io::{read_network, stage_mesh, Staged};
 use curvenet::Error;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args)]
@@ -36,6 +36,7 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
     let progress = Progress::new(a.quiet);
     // Check the output names before any work, so that a typo does not cost a whole run.
     curvenet::io::check_mesh_path(&a.output)?;
+    distinct_paths(&a.input, &[Some(&a.output), a.stats.as_ref(), a.render.as_ref()])?;
     let picture = match &a.render {
         Some(path) => {
             crate::render::check_png_path(path)?;
@@ -99,6 +100,26 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
             s.method,
             s.timings.total
         );
+    }
+    Ok(())
+}
+
+/// The outputs name different files, none of them the input (compared as given and, where they
+/// exist, as canonical paths): a usage error otherwise, before any work, so that no output
+/// overwrites another or the input.
+pub(crate) fn distinct_paths(input: &Path, outputs: &[Option<&PathBuf>]) -> Result<(), Error> {
+    let key = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+    let outputs: Vec<&PathBuf> = outputs.iter().flatten().copied().collect();
+    for (i, a) in outputs.iter().enumerate() {
+        if key(a) == key(input) {
+            return Err(Error::usage(format!("{} is the input file; write the outputs elsewhere", a.display())));
+        }
+        if let Some(b) = outputs[..i].iter().find(|b| key(b) == key(a)) {
+            return Err(Error::usage(format!(
+                "{} is named for two outputs; give each output (mesh, `stats`, `render`) its own file",
+                b.display()
+            )));
+        }
     }
     Ok(())
 }

@@ -395,3 +395,30 @@ fn help_documents_every_option() {
         assert!(text.contains(name));
     }
 }
+
+/// Two outputs naming one file, or an output naming the input: a usage error before any
+/// work, and the existing file is left byte-identical.
+#[test]
+fn outputs_naming_the_same_file_are_a_usage_error() {
+    let dir = scratch("same-file");
+    let net = dir.join("s.json");
+    let o = bin().args(["example", "sphere", "-o"]).arg(&net).output().unwrap();
+    assert!(o.status.success());
+    let mesh = dir.join("m.ply");
+    std::fs::write(&mesh, b"keep me").unwrap();
+    for extra in [vec!["--stats", "m.ply"], vec!["--render", "x.png", "--stats", "x.png"]] {
+        let o = bin()
+            .current_dir(&dir)
+            .args(["surface", "s.json", "-o", "m.ply", "--vertices", "500"])
+            .args(&extra)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(String::from_utf8_lossy(&o.stderr).contains("two outputs"));
+        assert_eq!(std::fs::read(&mesh).unwrap(), b"keep me");
+    }
+    let o = bin().current_dir(&dir).args(["surface", "s.json", "-o", "m.ply", "--stats", "s.json"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("is the input file"));
+    assert!(!dir.join("x.png").exists());
+}

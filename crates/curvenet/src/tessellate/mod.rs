@@ -91,7 +91,9 @@ fn describe_patch(g: &Graph, hs: &[HalfEdge]) -> String {
     curves.dedup();
     let mut s = curves.join(", ");
     if s.len() > 200 {
-        s.truncate(200);
+        // Cut at a character boundary (names may hold any UTF-8).
+        let end = (0..=200).rev().find(|&i| s.is_char_boundary(i)).unwrap_or(0);
+        s.truncate(end);
         s.push('…');
     }
     s
