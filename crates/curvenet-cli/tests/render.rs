@@ -3,19 +3,9 @@
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
-
-/// Decodes an 8-bit RGB PNG with the `png` crate: `(width, height, rgb)`, `None` for anything
-/// else.
-fn decode_rgb(bytes: &[u8]) -> Option<(u32, u32, Vec<u8>)> {
-    let mut reader = png::Decoder::new(std::io::Cursor::new(bytes)).read_info().ok()?;
-    let mut rgb = vec![0; reader.output_buffer_size()?];
-    let info = reader.next_frame(&mut rgb).ok()?;
-    if (info.color_type, info.bit_depth) != (png::ColorType::Rgb, png::BitDepth::Eight) {
-        return None;
-    }
-    rgb.truncate(info.buffer_size());
-    Some((info.width, info.height, rgb))
-}
+#[path = "../../curvenet/tests/support/png.rs"]
+mod support;
+use support::decode_rgb;
 
 fn run(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_curvenet")).args(args).output().unwrap()

@@ -5,19 +5,9 @@
 use curvenet::network::examples;
 use curvenet::render::{render, Coloring, RenderOptions, Scene, View};
 use curvenet::Options;
-
-/// Decodes an 8-bit RGB PNG with the `png` crate: `(width, height, rgb)`, `None` for anything
-/// else.
-fn decode_rgb(bytes: &[u8]) -> Option<(u32, u32, Vec<u8>)> {
-    let mut reader = png::Decoder::new(std::io::Cursor::new(bytes)).read_info().ok()?;
-    let mut rgb = vec![0; reader.output_buffer_size()?];
-    let info = reader.next_frame(&mut rgb).ok()?;
-    if (info.color_type, info.bit_depth) != (png::ColorType::Rgb, png::BitDepth::Eight) {
-        return None;
-    }
-    rgb.truncate(info.buffer_size());
-    Some((info.width, info.height, rgb))
-}
+#[path = "support/png.rs"]
+mod support;
+use support::decode_rgb;
 
 fn scene(net: &curvenet::Network) -> Scene {
     let options = Options::default().with_vertices(8000);

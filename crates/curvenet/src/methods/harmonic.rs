@@ -117,7 +117,8 @@ pub fn harmonic(
         (ops.ls.restrict(nb, -1.0), rhs)
     } else {
         use crate::methods::polyharmonic as poly;
-        (poly::matrix(&ops, order, nb), poly::rhs(&ops, order, &known, nb))
+        let products = poly::Products::new(&ops, order);
+        (poly::matrix(&ops, &products, nb), poly::rhs(&ops, &products, &known, nb))
     };
     let system = Eliminated::factor(&q, nb, None, &format!("harmonic system (k = {order})"))?;
     let rhs = system.solve(rhs);

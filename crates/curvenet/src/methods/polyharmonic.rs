@@ -45,11 +45,15 @@ impl SurfacingMethod for Polyharmonic {
             return Ok(MethodResult { positions, ..Default::default() });
         }
         let order = self.order;
-        let rhs = timed(&mut t.operators, || rhs(ops, order, &known_rows(n, nc, &[&mesh.positions]), nc));
+        let (products, rhs) = timed(&mut t.operators, || {
+            let p = Products::new(ops, order);
+            let rhs = rhs(ops, &p, &known_rows(n, nc, &[&mesh.positions]), nc);
+            (p, rhs)
+        });
         let system = match self.system.take().filter(|s| s.dim() == n - nc) {
             Some(s) => s,
             None => {
-                let q = timed(&mut t.operators, || matrix(ops, order, nc));
+                let q = timed(&mut t.operators, || matrix(ops, &products, nc));
                 let what = if order == 2 { "biharmonic system" } else { "triharmonic system" };
                 timed(&mut t.factor, || factor_on(mesh, &q, nc, what))?
             }
@@ -74,32 +78,46 @@ pub fn polyharmonic(mesh: &Mesh, ops: &Operators, order: usize, t: &mut SolveTim
     Polyharmonic::new(order).solve(mesh, ops, t)
 }
 
-/// The lower triangle of the matrix of `Δᵏ X = 0` (`order` 2 or 3) on the unknown rows
-/// `first..`: `(Ls M⁻¹ Ls)_uu` or `(−Ls M⁻¹ Ls M⁻¹ Ls)_uu`.
-pub(crate) fn matrix(ops: &Operators, order: usize, first: usize) -> Csc {
-    let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
-    if order == 2 {
-        product_lower(&ops.ls, &inv_m, &ops.ls, first)
-    } else {
-        let tt = crate::solve::sparse::product(&ops.ls, &inv_m, &ops.ls, 0);
-        let neg: Vec<f64> = inv_m.iter().map(|x| -x).collect();
-        product_lower(&ops.ls, &neg, &tt, first)
+/// The products shared by the matrix and the right-hand side of `Δᵏ X = 0`: `M⁻¹` and, for
+/// `order` 3, `T = Ls M⁻¹ Ls` (assembled once per solve).
+pub(crate) struct Products {
+    inv_m: Vec<f64>,
+    tt: Option<Csc>,
+}
+
+impl Products {
+    /// The products of `ops` for `order` 2 or 3.
+    pub(crate) fn new(ops: &Operators, order: usize) -> Self {
+        let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
+        let tt = (order != 2).then(|| crate::solve::sparse::product(&ops.ls, &inv_m, &ops.ls, 0));
+        Products { inv_m, tt }
     }
 }
 
-/// The right-hand side `−(Q X̃)_u` of `Δᵏ X = 0` (`order` 2 or 3) on the unknown rows
-/// `first..` with the rows `..first` of `known` fixed (one column per column of `known`).
-pub(crate) fn rhs(ops: &Operators, order: usize, known: &Mat<f64>, first: usize) -> Mat<f64> {
+/// The lower triangle of the matrix of `Δᵏ X = 0` on the unknown rows `first..`:
+/// `(Ls M⁻¹ Ls)_uu` (order 2) or `(−Ls M⁻¹ Ls M⁻¹ Ls)_uu` (order 3, `p.tt` given).
+pub(crate) fn matrix(ops: &Operators, p: &Products, first: usize) -> Csc {
+    match &p.tt {
+        None => product_lower(&ops.ls, &p.inv_m, &ops.ls, first),
+        Some(tt) => {
+            let neg: Vec<f64> = p.inv_m.iter().map(|x| -x).collect();
+            product_lower(&ops.ls, &neg, tt, first)
+        }
+    }
+}
+
+/// The right-hand side `−(Q X̃)_u` of `Δᵏ X = 0` on the unknown rows `first..` with the rows
+/// `..first` of `known` fixed (one column per column of `known`).
+pub(crate) fn rhs(ops: &Operators, p: &Products, known: &Mat<f64>, first: usize) -> Mat<f64> {
     let n = ops.ls.nrows;
-    let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
-    let energy = LeastSquares { a: &ops.ls, w: &inv_m, first };
-    if order == 2 {
-        energy.rhs(None, known)
-    } else {
-        // T = Ls M⁻¹ Ls; Q₃ = −Ls M⁻¹ T; rhs = −(Q₃ X̃)_f = (Ls M⁻¹ T X̃)_f.
-        let tt = crate::solve::sparse::product(&ops.ls, &inv_m, &ops.ls, 0);
-        let mut y = Mat::<f64>::zeros(n, known.ncols());
-        tt.sym_mul_dense(known.as_ref(), y.as_mut());
-        energy.rhs(Some(&y), &Mat::<f64>::zeros(n, known.ncols()))
+    let energy = LeastSquares { a: &ops.ls, w: &p.inv_m, first };
+    match &p.tt {
+        None => energy.rhs(None, known),
+        Some(tt) => {
+            // T = Ls M⁻¹ Ls; Q₃ = −Ls M⁻¹ T; rhs = −(Q₃ X̃)_f = (Ls M⁻¹ T X̃)_f.
+            let mut y = Mat::<f64>::zeros(n, known.ncols());
+            tt.sym_mul_dense(known.as_ref(), y.as_mut());
+            energy.rhs(Some(&y), &Mat::<f64>::zeros(n, known.ncols()))
+        }
     }
 }

@@ -112,11 +112,6 @@ impl Eliminated<Cholesky> {
 }
 
 impl<F: Factorization> Eliminated<F> {
-    /// A system on the unknowns `first..` already factorised by `factor`.
-    pub fn from_factorization(first: usize, factor: F) -> Self {
-        Eliminated { first, factor }
-    }
-
     /// The first unknown row.
     pub fn first(&self) -> usize {
         self.first
