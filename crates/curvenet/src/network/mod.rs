@@ -19,7 +19,8 @@ pub struct Curve {
     /// Sample positions, in order along the curve (≥ 2; ≥ 3 when `closed`).
     pub points: Vec<DVec3>,
     /// Surface normals at the samples, same length as `points`; non-zero, need not be unit.
-    /// They point to the outside of the surface (the side the user sees).
+    /// They point to the outside of the surface (the side the user sees). **Empty: unknown** —
+    /// the pipeline infers them ([`crate::topology::orient`], docs/design.md §12).
     pub normals: Vec<DVec3>,
     /// The last sample connects back to the first.
     pub closed: bool,
@@ -35,6 +36,13 @@ pub struct Network {
     /// Snapping tolerance (a distance): two curves closer than this meet at a node. `None`
     /// uses [`Network::DEFAULT_SNAP_RELATIVE`] times the bounding-box diagonal.
     pub snap: Option<f64>,
+}
+
+impl Curve {
+    /// The curve carries its normals (an empty `normals` means unknown: they are inferred).
+    pub fn has_normals(&self) -> bool {
+        !self.normals.is_empty()
+    }
 }
 
 /// Human-readable name of curve `index` for messages: `curve 3 ("equator")`.
@@ -80,6 +88,20 @@ impl Network {
         })
     }
 
+    /// Every curve carries its normals (nothing to infer).
+    pub fn has_all_normals(&self) -> bool {
+        self.curves.iter().all(Curve::has_normals)
+    }
+
+    /// A copy with every curve's normals removed (unknown): test data for normal inference.
+    pub fn without_normals(&self) -> Network {
+        let mut out = self.clone();
+        for c in &mut out.curves {
+            c.normals.clear();
+        }
+        out
+    }
+
     /// Total number of samples.
     pub fn num_samples(&self) -> usize {
         self.curves.iter().map(|c| c.points.len()).sum()
@@ -114,7 +136,8 @@ impl Network {
         let mut shared: std::collections::HashMap<[u64; 3], (DVec3, DVec3)> = std::collections::HashMap::new();
         let mut out = self.clone();
         for c in &mut out.curves {
-            for (p, n) in c.points.iter_mut().zip(c.normals.iter_mut()) {
+            let known = c.has_normals();
+            for (i, p) in c.points.iter_mut().enumerate() {
                 // Key by position rounded to 1e-9 of the spacing, so coincident samples share it.
                 // (+ 0.0 turns −0 into +0, so that both round to the same key.)
                 let q = (*p / (1e-9 * sigma.max(f64::MIN_POSITIVE))).round() + DVec3::ZERO;
@@ -122,14 +145,18 @@ impl Network {
                 let (dp, dn) =
                     *shared.entry(key).or_insert_with(|| (rng.gaussian3() * sigma, rng.gaussian3() * fraction));
                 *p += dp;
-                let m = n.normalize_or_zero() + dn;
-                *n = if m.length() > 1e-6 { m.normalize() } else { *n };
+                if known {
+                    let n = &mut c.normals[i];
+                    let m = n.normalize_or_zero() + dn;
+                    *n = if m.length() > 1e-6 { m.normalize() } else { *n };
+                }
             }
         }
         out
     }
 
-    /// Checks the network and returns a cleaned copy: unit normals, consecutive duplicate
+    /// Checks the network and returns a cleaned copy: unit normals (a curve without normals
+    /// stays without: they are unknown), consecutive duplicate
     /// samples merged (each merge is reported as a warning), a closed curve's repeated first
     /// sample dropped.
     ///
@@ -143,13 +170,14 @@ impl Network {
     pub fn validated(&self) -> Result<(Network, Vec<Warning>)> {
         let mut warnings = Vec::new();
         if self.curves.is_empty() {
-            return Err(Error::input("the network has no curves: give at least one curve with points and normals"));
+            return Err(Error::input("the network has no curves: give at least one curve with points (and normals)"));
         }
         for (ci, c) in self.curves.iter().enumerate() {
             let label = || curve_label(&self.curves, ci);
-            if c.points.len() != c.normals.len() {
+            if c.has_normals() && c.points.len() != c.normals.len() {
                 return Err(Error::input(format!(
-                    "{}: {} points but {} normals; every point needs one normal, in the same order",
+                    "{}: {} points but {} normals; every point needs one normal, in the same order (or leave \
+                     the normals out: they are then inferred)",
                     label(),
                     c.points.len(),
                     c.normals.len()
@@ -229,7 +257,7 @@ impl Network {
             let mut merged = Vec::new();
             // The input sample of each kept point (for the ids of errors).
             let mut input_sample: Vec<usize> = Vec::with_capacity(c.points.len());
-            for (si, (p, n)) in c.points.iter().zip(&c.normals).enumerate() {
+            for (si, p) in c.points.iter().enumerate() {
                 if let Some(last) = points.last() {
                     if last.distance(*p) <= dup_tol {
                         merged.push(si);
@@ -238,7 +266,9 @@ impl Network {
                 }
                 input_sample.push(si);
                 points.push(*p);
-                normals.push(n.normalize());
+                if let Some(n) = c.normals.get(si) {
+                    normals.push(n.normalize());
+                }
             }
             if !merged.is_empty() {
                 let list: Vec<String> = merged.iter().take(5).map(|s| s.to_string()).collect();
@@ -255,7 +285,7 @@ impl Network {
             }
             if c.closed && points.len() > 1 && points[0].distance(points[points.len() - 1]) <= dup_tol {
                 points.pop();
-                normals.pop();
+                normals.truncate(points.len());
                 warnings.push(
                     Warning::new(format!(
                         "{label}: closed curve repeats its first sample at the end; the repeat was dropped"
@@ -272,7 +302,7 @@ impl Network {
                 ))
                 .curve(ci));
             }
-            if let Some(si) = tangent_normal(&points, &normals, c.closed) {
+            if let Some(si) = (!normals.is_empty()).then(|| tangent_normal(&points, &normals, c.closed)).flatten() {
                 let sample = input_sample[si];
                 return Err(Error::input(format!(
                     "{label}, sample {sample}: normal {} is tangent to the curve (within {:.0}° of its direction); \

@@ -1,6 +1,8 @@
 //! The whole pipeline, network in, surface out (\[CG\] §3.1; docs/design.md §1).
 //!
 //! 1. [`options`]: the run's options, their names and presets.
+//! 1. [`infer`]: normals for the curves that come without them (then the paper's pipeline
+//!    runs as for given normals).
 //! 2. [`prepare`]: validate, find nodes, fit splines, trace the cycles, pick the spacing,
 //!    resample, tessellate (planar or conformal patching).
 //! 3. [`solve`]: the method on the patches' domain operators, then normal-control's 3D
@@ -10,14 +12,16 @@
 //! [`surface`] runs them once; [`surfacer::Surfacer`] keeps the mesh and the method's
 //! factorisations for re-solves with new curve normals or positions.
 
+pub mod infer;
 pub mod options;
 pub mod prepare;
 pub mod solve;
 pub mod stats;
 pub mod surfacer;
 
-pub use options::{MeshOptions, OptionSpec, Options, Patching, Preset, OPTIONS};
-pub use stats::{Stats, Surface, Timings};
+pub use infer::{infer_normals, Inferred};
+pub use options::{InferNormals, MeshOptions, OptionSpec, Options, Patching, Preset, OPTIONS};
+pub use stats::{InferredNormals, Stats, Surface, Timings};
 
 use crate::error::Result;
 use crate::network::Network;
@@ -34,7 +38,20 @@ pub fn surface_with_progress(
     options: &Options,
     progress: &mut dyn FnMut(&str, f64, &str),
 ) -> Result<Surface> {
+    let inferred = if infer::needs_inference(network, options) {
+        let inferred = infer::infer_normals(network, options)?;
+        let r = &inferred.report;
+        progress("normals", r.seconds, &format!("{} curves inferred", r.curves));
+        Some(inferred)
+    } else {
+        None
+    };
+    let network = inferred.as_ref().map_or(network, |i| &i.network);
     let prepared = prepare::prepare(network, options, progress)?;
     let base = prepared.timings;
-    solve::solve_prepared(Cow::Owned(prepared), options, progress, None, base)
+    let mut surface = solve::solve_prepared(Cow::Owned(prepared), options, progress, None, base)?;
+    if let Some(i) = inferred {
+        infer::add_to_surface(&mut surface, i);
+    }
+    Ok(surface)
 }

@@ -39,6 +39,29 @@ impl Patching {
     }
 }
 
+/// Which curves' normals are inferred (option `infer_normals`, docs/design.md §12).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum InferNormals {
+    /// Only those of curves that come without normals (given normals win).
+    #[default]
+    Missing,
+    /// Every curve's, given normals ignored (to compare with them).
+    All,
+}
+
+impl InferNormals {
+    /// Every choice.
+    pub const ALL: [InferNormals; 2] = [InferNormals::Missing, InferNormals::All];
+
+    /// The name used in options: `missing`, `all`.
+    pub fn name(self) -> &'static str {
+        match self {
+            InferNormals::Missing => "missing",
+            InferNormals::All => "all",
+        }
+    }
+}
+
 /// How the mesh is built: its resolution, where curves meet, the patches' domains.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshOptions {
@@ -97,6 +120,8 @@ pub struct Options {
     pub short_paper: ShortPaperOptions,
     /// cauchy: `order`, `ghost_updates`, and the per-curve attributes.
     pub cauchy: CauchyOptions,
+    /// `infer_normals`: which curves' normals are inferred ([`crate::pipeline::infer`]).
+    pub infer_normals: InferNormals,
 }
 
 /// A named starting point for the options, defined here only; explicit values override it.
@@ -465,6 +490,26 @@ pub const OPTIONS: &[OptionSpec] = &[
             Ok(())
         },
         get: |o| Some(text(o.short_paper.w1)),
+    },
+    OptionSpec {
+        name: "infer_normals",
+        value_name: "missing|all",
+        choices: &["missing", "all"],
+        help: "Which curves' normals are inferred from the network's shape (tangent planes where curves \
+               cross, one orientation, a first positions-only surface): those of curves that come without \
+               normals (given normals win), or all of them (to compare with the given ones).",
+        unset: None,
+        aliases: &[],
+        set: |o, v| {
+            let v = match v {
+                "true" | "True" | "yes" => "all",
+                "false" | "False" | "no" => "missing",
+                v => v,
+            };
+            o.infer_normals = choice(&InferNormals::ALL, InferNormals::name, v, "missing or all")?;
+            Ok(())
+        },
+        get: |o| Some(o.infer_normals.name().to_string()),
     },
     OptionSpec {
         name: "snap",

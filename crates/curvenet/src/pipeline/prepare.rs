@@ -59,13 +59,13 @@ pub(crate) struct Prepared {
 }
 
 /// The network's topology: the validated network, its nodes, segments, splines and patches.
-struct Topology {
-    net: Network,
-    g: Graph,
-    splines: Vec<CurveSpline>,
-    patches: Vec<Patch>,
-    snap: f64,
-    warnings: Vec<Warning>,
+pub(super) struct Topology {
+    pub(super) net: Network,
+    pub(super) g: Graph,
+    pub(super) splines: Vec<CurveSpline>,
+    pub(super) patches: Vec<Patch>,
+    pub(super) snap: f64,
+    pub(super) warnings: Vec<Warning>,
 }
 
 /// Validates, finds the nodes and patches, picks the spacing, resamples and tessellates
@@ -132,7 +132,7 @@ pub(crate) fn segment_layout(g: &Graph, res: &Resampled) -> Vec<[usize; 4]> {
 
 /// Checks the values of the options a library caller may have set directly (front ends check
 /// them when they are set by name, [`Options::set`]).
-fn check_options(options: &Options) -> Result<()> {
+pub(super) fn check_options(options: &Options) -> Result<()> {
     if let Some(d) = options.mesh.spacing {
         if !(d.is_finite() && d > 0.0) {
             return Err(Error::usage(format!("spacing {d} is not a positive distance")));
@@ -182,7 +182,7 @@ fn topology(network: &Network, mesh: &MeshOptions, timings: &mut Timings, progre
 }
 
 /// Resamples and tessellates at spacing `d` with planar projections (\[CG\] §3.3).
-fn planar_stage(topo: &Topology, d: f64, timings: &mut Timings) -> Result<(Resampled, Mesh)> {
+pub(super) fn planar_stage(topo: &Topology, d: f64, timings: &mut Timings) -> Result<(Resampled, Mesh)> {
     let res = timed(&mut timings.resample, || resample_network(&topo.g, &topo.splines, d));
     let mesh = timed(&mut timings.tessellate, || -> Result<Mesh> {
         let mesh = tessellate(&topo.g, &res, &topo.patches, d)?;
@@ -294,7 +294,7 @@ fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
 /// Sizes that predict the vertex count: free vertices ≈ `c A / d²` over the patches' projected
 /// area `A`, curve vertices ≈ `ℓ / d` over the segments' length `ℓ`.
 #[derive(Clone)]
-struct SizeModel {
+pub(super) struct SizeModel {
     /// `c A`: the vertices-per-area constant times the domains' total area.
     area: f64,
     /// `ℓ`: the segments' total arc length.
@@ -305,7 +305,7 @@ struct SizeModel {
 
 impl SizeModel {
     /// The model of the network `g` with its `splines` and `patches`.
-    fn new(g: &Graph, splines: &[CurveSpline], patches: &[Patch]) -> Self {
+    pub(super) fn new(g: &Graph, splines: &[CurveSpline], patches: &[Patch]) -> Self {
         let length: f64 = g.segments.iter().map(|s| splines[s.curve].arc_between(s.first, s.last)).sum();
         let samples = |hs: &[crate::topology::HalfEdge]| -> Vec<DVec3> {
             hs.iter().flat_map(|&h| half_edge_samples(g, h)).map(|x| x.0).collect()
@@ -331,7 +331,7 @@ impl SizeModel {
     }
 
     /// The spacing that gives about `target` vertices (`n = c A x² + ℓ x`, `x = 1/d`).
-    fn spacing(&self, target: usize) -> f64 {
+    pub(super) fn spacing(&self, target: usize) -> f64 {
         let (ca, l, n) = (self.area, self.length, target.max(10) as f64);
         let x = if ca > 0.0 { (-l + (l * l + 4.0 * ca * n).sqrt()) / (2.0 * ca) } else { n / l };
         1.0 / x

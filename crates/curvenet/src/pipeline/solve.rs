@@ -212,6 +212,7 @@ fn finish(
         iterations: iteration_report.0.len(),
         iteration_stop: iteration_report.1.map(|s| s.name().to_string()),
         iteration_updates: iteration_report.0,
+        inferred_normals: None,
         peak_memory_bytes: None,
         timings,
     };

@@ -12,6 +12,8 @@ use serde::Serialize;
 pub struct Timings {
     /// Reading the input file (front ends).
     pub read: f64,
+    /// Inferring the normals of curves that come without (0 when all are given).
+    pub normals: f64,
     /// Validation, nodes and segments.
     pub nodes: f64,
     /// Splines and resampling.
@@ -61,8 +63,29 @@ pub struct Stats {
     pub iteration_updates: Vec<f64>,
     /// Peak resident memory of the process in bytes, when the front end measured it.
     pub peak_memory_bytes: Option<u64>,
+    /// What the normal inference found, when curves came without normals (or with
+    /// `infer_normals = all`).
+    pub inferred_normals: Option<InferredNormals>,
     /// Seconds per stage.
     pub timings: Timings,
+}
+
+/// What the normal inference found ([`crate::pipeline::infer`]), for `--stats`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct InferredNormals {
+    /// Curves whose normals were inferred.
+    pub curves: usize,
+    /// Nodes whose normal came from the tangents of the curves that cross there.
+    pub nodes_from_tangents: usize,
+    /// Nodes without a tangent plane of their own: their normal was carried along a curve.
+    pub nodes_transported: usize,
+    /// Links between nodes where the orientation was a guess (the carried normal far from the
+    /// next node's tangent plane normal).
+    pub doubtful_links: usize,
+    /// Times a component (or the whole closed surface) was turned to face outward.
+    pub turned_outward: usize,
+    /// Seconds of the whole inference.
+    pub seconds: f64,
 }
 
 /// The result of a surfacing run.

@@ -41,9 +41,18 @@ pub struct Surfacer {
 impl Surfacer {
     /// Validates `network` and builds the mesh with `options` (every stage of
     /// [`crate::surface`] but the final solve). Errors as [`crate::surface`].
+    ///
+    /// A network with curves without normals has them inferred first
+    /// ([`crate::infer_normals`]); [`Surfacer::network`] is then the network with its inferred
+    /// normals, which the updates change.
     pub fn new(network: &Network, options: &Options) -> Result<Self> {
-        let prepared = prepare(network, options, &mut |_, _, _| {})?;
-        Ok(Surfacer { network: network.clone(), options: options.clone(), prepared, kept: None, solves: 0 })
+        let network = if super::infer::needs_inference(network, options) {
+            super::infer::infer_normals(network, options)?.network
+        } else {
+            network.clone()
+        };
+        let prepared = prepare(&network, options, &mut |_, _, _| {})?;
+        Ok(Surfacer { network, options: options.clone(), prepared, kept: None, solves: 0 })
     }
 
     /// The network with the current normals.

@@ -1,10 +1,12 @@
 //! Topology of the network: where curves meet ([`nodes`]) and which cycles of segments bound
 //! the patches of the surface ([`cycles`], \[CG\] §3.2); dangling parts of open networks are
-//! trimmed first ([`open`]).
+//! trimmed first ([`open`]); the normals of curves that come without them are inferred
+//! ([`orient`]).
 
 pub mod cycles;
 pub mod nodes;
 pub mod open;
+pub mod orient;
 pub mod resample;
 
 pub use cycles::{find_patches, HalfEdge, Patch};

@@ -145,10 +145,9 @@ fn trim_dangling_only(g: &mut Graph) -> Result<Vec<Warning>> {
         let what = if g.curves[c].boundary { "boundary curve" } else { "curve" };
         warnings.push(Warning::new(if kept {
             format!(
-                "{} ({what}) has a dangling end that meets no other curve: the part beyond {} at {} bounds no \
-                 patch and was left out of the surface",
+                "{} ({what}) has a dangling end that meets no other curve: the part beyond node {v} at {} bounds \
+                 no patch and was left out of the surface",
                 g.labels[c],
-                "node",
                 fmt_point(g.nodes[*v].position)
             )
         } else {
@@ -161,15 +160,24 @@ fn trim_dangling_only(g: &mut Graph) -> Result<Vec<Warning>> {
         .curve(c));
     }
     if removed.iter().all(|&r| r) {
-        return Err(Error::topology(format!(
-            "no curves of the network bound a patch: every curve dangles or meets no other ({}). Curves must \
+        let named: Vec<&str> = stop_at
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.is_some())
+            .map(|(c, _)| g.labels[c].as_str())
+            .take(10)
+            .collect();
+        let first = stop_at.iter().position(Option::is_some);
+        let e = Error::topology(format!(
+            "no curves of the network bound a patch: every curve dangles or meets no other ({}{}). Curves must \
              cross each other (or end on each other) to enclose patches",
-            warnings
-                .iter()
-                .map(|w| w.message.split(" (").next().unwrap_or("").to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        )));
+            named.join(", "),
+            if stop_at.iter().filter(|s| s.is_some()).count() > named.len() { ", …" } else { "" }
+        ));
+        return Err(match first {
+            Some(c) => e.curve(c),
+            None => e,
+        });
     }
     let gone: Vec<usize> = (0..ns).filter(|&s| removed[s]).collect();
     remove_segments(g, &gone);

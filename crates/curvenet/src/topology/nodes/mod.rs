@@ -54,6 +54,9 @@ pub struct SplitCurve {
     pub boundary: bool,
     /// `(sample index, node id)` for every node on the curve, by increasing sample index.
     pub nodes: Vec<(usize, usize)>,
+    /// Per sample: the index of the input curve's sample it stands for ([`usize::MAX`] for a
+    /// node inserted between samples).
+    pub origin: Vec<usize>,
 }
 
 /// A portion of a curve between two adjacent nodes.

@@ -93,9 +93,11 @@ pub(super) fn split_curve(lines: &Polylines, c: usize, list: &mut [(f64, usize)]
     let (snapped, inserts) = place_nodes(lines, c, list);
     let mut points = Vec::with_capacity(n + inserts.len());
     let mut normals = Vec::with_capacity(n + inserts.len());
+    let mut origin = Vec::with_capacity(n + inserts.len());
     let mut markers = Vec::new();
     let mut k = 0;
     for (i, &snap) in snapped.iter().enumerate() {
+        origin.push(i);
         match snap {
             Some(node) => {
                 markers.push((points.len(), node));
@@ -112,6 +114,7 @@ pub(super) fn split_curve(lines: &Polylines, c: usize, list: &mut [(f64, usize)]
             markers.push((points.len(), node));
             points.push(nodes[node].position);
             normals.push(nodes[node].normal);
+            origin.push(usize::MAX);
             k += 1;
         }
     }
@@ -120,6 +123,7 @@ pub(super) fn split_curve(lines: &Polylines, c: usize, list: &mut [(f64, usize)]
         let r = markers[0].0;
         points.rotate_left(r);
         normals.rotate_left(r);
+        origin.rotate_left(r);
         let m = points.len();
         for mk in markers.iter_mut() {
             mk.0 = (mk.0 + m - r) % m;
@@ -133,6 +137,7 @@ pub(super) fn split_curve(lines: &Polylines, c: usize, list: &mut [(f64, usize)]
         closed: curve.closed,
         boundary: curve.boundary,
         nodes: markers,
+        origin,
     }
 }
 

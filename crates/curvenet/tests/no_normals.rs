@@ -1,0 +1,53 @@
+//! Networks without normals (issue 15): analytic networks and networks sampled from the
+//! vendored meshes, their normals removed, surfaced and measured against the truth and against
+//! the same build with the normals given.
+
+use curvenet::geom::{Aabb, DVec3};
+use curvenet::metrics::{distance_to_truth, evaluate, example_truth, Reference};
+use curvenet::network::examples::example;
+use curvenet::sampling::{sample_mesh, SampleOptions};
+use curvenet::{surface, Network, Options};
+
+/// RMS distance of the surface of `net` to the truth of example `name`.
+fn rms_to_truth(name: &str, net: &Network, options: &Options) -> f64 {
+    let s = surface(net, options).unwrap_or_else(|e| panic!("{name}: {e}"));
+    distance_to_truth(&s.mesh.positions, 0, &example_truth(name).unwrap()).rms
+}
+
+#[test]
+fn analytic_examples_without_normals_are_within_three_times_the_error_with() {
+    let options = Options::default().with_vertices(10_000);
+    for name in ["sphere", "globe", "cube", "torus", "cylinder", "saddle"] {
+        let net = example(name).unwrap();
+        let with = rms_to_truth(name, &net, &options);
+        let without = rms_to_truth(name, &net.without_normals(), &options);
+        let diag = net.bounding_box().diagonal();
+        eprintln!("{name}: with {with:.3e}, without {without:.3e} ({:.4}% of the diagonal)", 100.0 * without / diag);
+        assert!(without <= (3.0 * with).max(2e-3 * diag), "{name}: without normals {without:.3e}, with {with:.3e}");
+    }
+}
+
+/// Reads a vendored mesh (`data/meshes/NAME`).
+fn vendored(name: &str) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/meshes").join(name);
+    let m = curvenet::io::read_mesh(&path).unwrap();
+    (m.positions, m.faces)
+}
+
+#[test]
+fn sampled_meshes_without_normals_are_within_three_times_the_error_with() {
+    for name in ["bumpy-cube.obj", "beetle.off"] {
+        let (p, f) = vendored(name);
+        let (net, _) = sample_mesh(&p, &f, &SampleOptions::default()).unwrap();
+        let diag = Aabb::of(p.iter().copied()).diagonal();
+        let measure = |net: &Network| {
+            let s = surface(net, &Options::default().with_vertices(20_000)).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let e = evaluate(&s.mesh.positions, &s.mesh.faces, Some(&s.normals), &s.curve_flags, Reference::Mesh { positions: &p, faces: &f }, None);
+            e.distance.rms
+        };
+        let with = measure(&net);
+        let without = measure(&net.without_normals());
+        eprintln!("{name}: with {:.4}%, without {:.4}% of the diagonal", 100.0 * with / diag, 100.0 * without / diag);
+        assert!(without <= (3.0 * with).max(2e-3 * diag), "{name}: without normals {without:.3e}, with {with:.3e}");
+    }
+}
