@@ -52,6 +52,7 @@ __all__ = [
     "example",
     "examples",
     "harmonic",
+    "infer_normals",
     "read_mesh",
     "read_network",
     "surface",
@@ -79,6 +80,8 @@ class SurfacingWarning(UserWarning):
 
 def _text(name, value):
     """An option value as the text the library parses (the command line's form)."""
+    if name == "infer_normals" and isinstance(value, bool):
+        return "all" if value else "missing"
     if isinstance(value, bool):
         raise TypeError(f"option {name} takes a number or a name, not a bool")
     if isinstance(value, str):
@@ -131,6 +134,23 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     """
     given = dict(method=method, spacing=spacing, vertices=vertices, soft=soft, iterations=iterations, **options)
     return _result(_curvenet._surface(network, _options(preset, given)))
+
+
+def infer_normals(network, *, all=False, snap=None):
+    """The network with the normals of its curves that have none inferred from its shape.
+
+    Returns ``(network, report, warnings)``: a :class:`Network` with a unit normal at every
+    sample (``curves`` gives them), the report as ``--stats`` writes it under
+    ``inferred_normals`` (a dict), and a list of :class:`SurfacingWarning`. ``all=True``
+    re-infers every curve's normals, also where they are given (to compare with them).
+    :func:`surface` does this by itself for curves whose normals are ``None``.
+    """
+    given = {"infer_normals": "all" if all else "missing", "snap": snap}
+    net, report, warnings = _curvenet._infer_normals(network, _options("default", given))
+    warnings = [SurfacingWarning(*w) for w in warnings]
+    for w in warnings:
+        _warnings.warn(w, stacklevel=2)
+    return net, _json.loads(report), warnings
 
 
 class Surfacer:

@@ -44,13 +44,14 @@ class SurfacingWarning(UserWarning):
     patch: Optional[int]
 
 class Network:
-    """A curve network. ``curves``: ``(points (k,3), normals (k,3), closed, boundary)``."""
+    """A curve network. ``curves``: ``(points (k,3), normals (k,3) or None, closed, boundary)``;
+    ``None`` normals are unknown (inferred)."""
 
     def __init__(
-        self, curves: Sequence[Tuple[ArrayLike, ArrayLike, bool, bool]], snap: Optional[float] = None
+        self, curves: Sequence[Tuple[ArrayLike, Optional[ArrayLike], bool, bool]], snap: Optional[float] = None
     ) -> None: ...
     @property
-    def curves(self) -> list[Tuple[FloatArray, FloatArray, bool, bool]]: ...
+    def curves(self) -> list[Tuple[FloatArray, Optional[FloatArray], bool, bool]]: ...
     @property
     def snap(self) -> Optional[float]: ...
     def write(self, path: str) -> None: ...
@@ -60,6 +61,9 @@ def read_network(path: str) -> Network: ...
 def read_mesh(path: str) -> Tuple[FloatArray, IntArray]: ...
 def example(name: str) -> Network: ...
 def examples() -> list[Tuple[str, str]]: ...
+def infer_normals(
+    network: Network, *, all: bool = False, snap: Optional[float] = None
+) -> Tuple[Network, dict[str, Any], list[SurfacingWarning]]: ...
 def surface(
     network: Network,
     method: Optional[Method] = None,
@@ -78,6 +82,7 @@ def surface(
     guide_area: Optional[Literal["mass", "surface"]] = None,
     guide_updates: Optional[int] = None,
     snap: Optional[float] = None,
+    infer_normals: Optional[Union[bool, Literal["missing", "all"]]] = None,
     order: Optional[int] = None,
     ghost_updates: Optional[int] = None,
 ) -> Tuple[FloatArray, IntArray, dict[str, Any]]:
@@ -103,6 +108,7 @@ class Surfacer:
         guide_area: Optional[Literal["mass", "surface"]] = None,
         guide_updates: Optional[int] = None,
         snap: Optional[float] = None,
+    infer_normals: Optional[Union[bool, Literal["missing", "all"]]] = None,
         order: Optional[int] = None,
         ghost_updates: Optional[int] = None,
     ) -> None: ...

@@ -165,6 +165,12 @@ fn to_array(p: &[DVec3]) -> Array2<f64> {
     Array2::from_shape_fn((p.len(), 3), |(i, c)| p[i][c])
 }
 
+/// A curve as Python gives it: `(points, normals or None, closed, boundary)`.
+type CurveTuple<'py> = (Bound<'py, PyAny>, Option<Bound<'py, PyAny>>, bool, bool);
+
+/// `(message, curve, sample, node, patch)` of a warning.
+type WarningTuple = (String, Option<usize>, Option<usize>, Option<usize>, Option<usize>);
+
 /// A curve network: curves sampled with normals (`curvenet::Network`).
 #[pyclass(module = "curvenet._curvenet", name = "Network")]
 #[derive(Clone)]
@@ -177,17 +183,21 @@ struct PyNetwork {
 
 #[pymethods]
 impl PyNetwork {
-    /// `curves`: a list of `(points (n,3) float64, normals (n,3) float64, closed, boundary)`.
+    /// `curves`: a list of `(points (n,3) float64, normals (n,3) float64 or None, closed,
+    /// boundary)`; `None` normals are unknown (inferred).
     #[new]
     #[pyo3(signature = (curves, snap=None))]
-    fn new(curves: Vec<(Bound<'_, PyAny>, Bound<'_, PyAny>, bool, bool)>, snap: Option<f64>) -> PyResult<Self> {
+    fn new(curves: Vec<CurveTuple<'_>>, snap: Option<f64>) -> PyResult<Self> {
         let mut out = Vec::with_capacity(curves.len());
         for (i, (p, n, closed, boundary)) in curves.iter().enumerate() {
             let (pn, nn) = (format!("curve {i}: points"), format!("curve {i}: normals"));
             out.push(curvenet::Curve {
                 name: None,
                 points: points(&pn, &array2(&pn, p, Some(3))?)?,
-                normals: points(&nn, &array2(&nn, n, Some(3))?)?,
+                normals: match n {
+                    Some(n) => points(&nn, &array2(&nn, n, Some(3))?)?,
+                    None => Vec::new(),
+                },
                 closed: *closed,
                 boundary: *boundary,
             });
@@ -195,14 +205,16 @@ impl PyNetwork {
         Ok(PyNetwork { inner: curvenet::Network { curves: out, snap }, source: None })
     }
 
-    /// The curves as `(points, normals, closed, boundary)` tuples (copies).
+    /// The curves as `(points, normals, closed, boundary)` tuples (copies; `normals` is `None`
+    /// where they are unknown).
     #[getter]
-    fn curves<'py>(&self, py: Python<'py>) -> Vec<(Points<'py>, Points<'py>, bool, bool)> {
+    fn curves<'py>(&self, py: Python<'py>) -> Vec<(Points<'py>, Option<Points<'py>>, bool, bool)> {
         self.inner
             .curves
             .iter()
             .map(|c| {
-                (to_array(&c.points).into_pyarray(py), to_array(&c.normals).into_pyarray(py), c.closed, c.boundary)
+                let normals = c.has_normals().then(|| to_array(&c.normals).into_pyarray(py));
+                (to_array(&c.points).into_pyarray(py), normals, c.closed, c.boundary)
             })
             .collect()
     }
@@ -287,8 +299,6 @@ fn result<'py>(py: Python<'py>, s: curvenet::Surface) -> PyResult<Bound<'py, pyo
     let info = PyDict::new(py);
     let stats = serde_json::to_string(&s.stats).map_err(|e| usage(e.to_string()))?;
     info.set_item("stats_json", stats)?;
-    /// `(message, curve, sample, node, patch)` of a warning.
-    type WarningTuple = (String, Option<usize>, Option<usize>, Option<usize>, Option<usize>);
     let warnings: Vec<WarningTuple> =
         s.warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect();
     info.set_item("warnings", warnings)?;
@@ -324,6 +334,23 @@ fn _surface<'py>(
     let net = &network.inner;
     let s = py.detach(|| curvenet::surface(net, &opts)).map_err(err)?;
     result(py, s)
+}
+
+/// The network with the normals of its curves without inferred (`curvenet::infer_normals`):
+/// `(network, report as JSON, warnings)`.
+#[pyfunction]
+fn _infer_normals(
+    py: Python<'_>,
+    network: &PyNetwork,
+    options: &PyOptions,
+) -> PyResult<(PyNetwork, String, Vec<WarningTuple>)> {
+    let net = &network.inner;
+    let opts = &options.inner;
+    let inferred = py.detach(|| curvenet::infer_normals(net, opts)).map_err(err)?;
+    let report = serde_json::to_string(&inferred.report).map_err(|e| usage(e.to_string()))?;
+    let warnings =
+        inferred.warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect();
+    Ok((PyNetwork { inner: inferred.network, source: network.source.clone() }, report, warnings))
 }
 
 /// A network prepared for repeated solves that keeps its mesh and factorisations
@@ -491,6 +518,7 @@ fn _curvenet(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("NumericalError", m.py().get_type::<NumericalError>())?;
     m.add("UsageError", m.py().get_type::<UsageError>())?;
     m.add_function(wrap_pyfunction!(_surface, m)?)?;
+    m.add_function(wrap_pyfunction!(_infer_normals, m)?)?;
     m.add_function(wrap_pyfunction!(_harmonic, m)?)?;
     m.add_function(wrap_pyfunction!(_eval, m)?)?;
     Ok(())

@@ -292,3 +292,22 @@ def test_gil_released_during_solves():
     # (652 ticks in 0.81 s measured). At least a tenth of that passes.
     assert end - start > 0.1
     assert len(during) > 0.1 * (end - start) / 0.001
+
+
+def test_networks_without_normals_are_inferred():
+    net = curvenet.example("sphere")
+    bare = curvenet.Network([(p, None, closed, boundary) for p, _, closed, boundary in net.curves])
+    assert all(n is None for _, n, _, _ in bare.curves)
+    inferred, report, warnings = curvenet.infer_normals(bare)
+    assert report["curves"] == 3
+    for p, n, _, _ in inferred.curves:
+        # The sphere's outward normals, from the three great circles' shape alone.
+        assert np.abs(np.sum(n * p, axis=1) / np.linalg.norm(p, axis=1) - 1).max() < 1e-4
+    V, F, info = curvenet.surface(bare, vertices=4000)
+    assert info["inferred_normals"]["curves"] == 3
+    assert np.abs(np.linalg.norm(V, axis=1) - 1).max() < 1e-2
+    # Given normals win; infer_normals=True re-infers them.
+    _, _, info = curvenet.surface(net, vertices=4000, preset="fast")
+    assert info["inferred_normals"] is None
+    _, _, info = curvenet.surface(net, vertices=4000, preset="fast", infer_normals=True)
+    assert info["inferred_normals"]["curves"] == 3

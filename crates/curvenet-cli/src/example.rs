@@ -25,6 +25,9 @@ pub struct ExampleArgs {
     /// Seed of the noise.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Leave the normals out (test data for the inference; .json and .obj only).
+    #[arg(long)]
+    no_normals: bool,
 }
 
 pub fn run(a: &ExampleArgs) -> Result<(), Error> {
@@ -46,8 +49,12 @@ pub fn run(a: &ExampleArgs) -> Result<(), Error> {
         Some(f) => return Err(Error::usage(format!("--noise {f} is not a non-negative number"))),
         None => net,
     };
+    let net = if a.no_normals { net.without_normals() } else { net };
     write_network(out, &net)?;
-    let noise = a.noise.map(|f| format!(", noise {f} (seed {})", a.seed)).unwrap_or_default();
+    let mut noise = a.noise.map(|f| format!(", noise {f} (seed {})", a.seed)).unwrap_or_default();
+    if a.no_normals {
+        noise.push_str(", no normals");
+    }
     out!("{}: example \"{name}\", {} curves, {} samples{noise}", out.display(), net.curves.len(), net.num_samples());
     Ok(())
 }

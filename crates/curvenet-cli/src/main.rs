@@ -15,6 +15,7 @@ mod example;
 mod figures;
 mod fit;
 mod inflate;
+mod normals;
 mod options;
 mod render;
 mod sample;
@@ -39,6 +40,8 @@ Exit codes: 0 success, 1 bad input (malformed file, invalid network, non-manifol
 2 usage error, 3 numerical failure, 4 internal error (a bug: please report it with the input).
 
 Network formats (by extension): .json (reference), .obj (v/vn/l, group \"boundary\"), .net.
+Normals may be left out (JSON: no \"normals\" key; OBJ: no vn, also an edge soup of l lines):
+they are then inferred from the curves' shape (see `curvenet normals`).
 Mesh formats (by extension): .ply (binary, with normals, mean curvature, curve flag), .obj, .off.
 See README.md for the formats and the method.";
 
@@ -46,7 +49,7 @@ See README.md for the formats and the method.";
 #[command(
     name = "curvenet",
     version,
-    about = "Surface a network of 3D curves with normals into a smooth triangle mesh",
+    about = "Surface a network of 3D curves (with or without normals) into a smooth triangle mesh",
     long_about = "Turns a network of 3D curves sampled with surface normals into a smooth triangle mesh \
                   (Stanko et al., \"Surfacing curve networks with normal control\", Computers & Graphics 2016).",
     after_help = AFTER_HELP
@@ -66,6 +69,9 @@ enum Command {
         after_help = "Use --list to see the names. The format follows the extension of -o: .json, .obj or .net."
     )]
     Example(example::ExampleArgs),
+    /// Infer the normals of curves that come without (3D sketches, CAD edges, polylines) and
+    /// write the network with them.
+    Normals(normals::NormalsArgs),
     /// Surface the bundled sphere network and report where the result went and how accurate it is.
     Demo(demo::DemoArgs),
     /// Measure a mesh against a ground truth: distances, normal angles, N* deviation (\[CG\] §4.3).
@@ -94,6 +100,7 @@ fn main() -> ExitCode {
         Command::Surface(a) => surface::run(&a),
         Command::Example(a) => example::run(&a),
         Command::Demo(a) => demo::run(&a),
+        Command::Normals(a) => normals::run(&a),
         Command::Eval(a) => eval::run(&a),
         Command::Sample(a) => sample::run(&a),
         Command::Study(a) => study::run(&a),

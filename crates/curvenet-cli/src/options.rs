@@ -105,6 +105,10 @@ impl Args for SolveArgs {
             if spec.name == "spacing" {
                 arg = arg.conflicts_with("vertices");
             }
+            if spec.name == "infer_normals" {
+                // `--infer-normals` alone: re-infer every curve's normals.
+                arg = arg.num_args(0..=1).default_missing_value("all").require_equals(false);
+            }
             cmd = cmd.arg(arg);
         }
         cmd

@@ -36,6 +36,9 @@ pub struct SampleArgs {
     /// Leave out the mesh's boundary loops.
     #[arg(long)]
     no_boundary: bool,
+    /// Leave the normals out (test data for the inference; .json and .obj only).
+    #[arg(long)]
+    no_normals: bool,
     /// The plane directions are the coordinate axes turned by DEG degrees about (1,2,3)
     /// (0: axis-aligned; then walls parallel to an axis are cut along coincident curves).
     #[arg(long, value_name = "DEG", default_value_t = SampleOptions::DEFAULT_TILT_DEG)]
@@ -72,6 +75,7 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
     };
     let mesh = read_mesh(&a.mesh)?;
     let (net, r) = sample_mesh(&mesh.positions, &mesh.faces, &opts)?;
+    let net = if a.no_normals { net.without_normals() } else { net };
     write_network(&a.output, &net)?;
     let mut dropped = String::new();
     if r.dropped_sections + r.dropped_boundary_loops > 0 {

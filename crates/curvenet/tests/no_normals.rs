@@ -42,12 +42,42 @@ fn sampled_meshes_without_normals_are_within_three_times_the_error_with() {
         let diag = Aabb::of(p.iter().copied()).diagonal();
         let measure = |net: &Network| {
             let s = surface(net, &Options::default().with_vertices(20_000)).unwrap_or_else(|e| panic!("{name}: {e}"));
-            let e = evaluate(&s.mesh.positions, &s.mesh.faces, Some(&s.normals), &s.curve_flags, Reference::Mesh { positions: &p, faces: &f }, None);
+            let e = evaluate(
+                &s.mesh.positions,
+                &s.mesh.faces,
+                Some(&s.normals),
+                &s.curve_flags,
+                Reference::Mesh { positions: &p, faces: &f },
+                None,
+            );
             e.distance.rms
         };
         let with = measure(&net);
         let without = measure(&net.without_normals());
         eprintln!("{name}: with {:.4}%, without {:.4}% of the diagonal", 100.0 * with / diag, 100.0 * without / diag);
         assert!(without <= (3.0 * with).max(2e-3 * diag), "{name}: without normals {without:.3e}, with {with:.3e}");
+    }
+}
+
+/// The vendored 3D sketches (`data/sketches`, CASSIE, no normals) that surface today, with the
+/// share of their input vertices within 0.5% of the diagonal of the surface.
+#[test]
+fn sketches_without_normals_surface_through_their_strokes() {
+    use curvenet::metrics::MeshDistance;
+    for name in ["computer-mouse.obj", "vacuum.obj"] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/sketches").join(name);
+        let net = curvenet::io::read_network(&path).unwrap();
+        assert!(net.curves.iter().all(|c| !c.has_normals()));
+        let s = surface(&net, &Options::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(curvenet::geom::mesh::bad_edge(&s.mesh.faces).is_none(), "{name}: not manifold");
+        let inferred = s.stats.inferred_normals.as_ref().expect("inferred");
+        assert_eq!(inferred.curves, net.curves.len() - inferred.left_out);
+        let diag = net.bounding_box().diagonal();
+        let d = MeshDistance::new(&s.mesh.positions, &s.mesh.faces);
+        let samples: Vec<DVec3> = net.curves.iter().flat_map(|c| c.points.iter().copied()).collect();
+        let near = samples.iter().filter(|p| d.closest(**p).0 <= 5e-3 * diag).count();
+        let share = near as f64 / samples.len() as f64;
+        eprintln!("{name}: {:.1}% of the input vertices within 0.5% of the diagonal", 100.0 * share);
+        assert!(share >= 0.95, "{name}: only {:.1}% of the input vertices near the surface", 100.0 * share);
     }
 }

@@ -140,7 +140,7 @@ put("json-truncated-mid-number.json", to_json(sphere(8))[:-200].rstrip() + "1.",
 put("json-wrong-type.json", '{"curves": [{"points": [[0,0,"a"]], "normals": []}]}', 1, "invalid type")
 put("json-two-coordinates.json", '{"curves": [{"points": [[0,0],[1,0]], "normals": [[0,0,1],[0,0,1]]}]}', 1,
     "json-two-coordinates.json:1:")
-put("json-missing-normals.json", '{"curves": [{"points": [[0,0,0],[1,0,0]]}]}', 1, "missing field `normals`")
+put("json-single-stroke-no-normals.json", '{"curves": [{"points": [[0,0,0],[1,0,0]]}]}', 1, "no curves of the network bound a patch")
 put("json-not-an-object.json", "[1, 2, 3]\n", 1, "json-not-an-object.json:1:")
 put("json-nan-literal.json", '{"curves": [{"points": [[0,0,NaN],[1,0,0]], "normals": [[0,0,1],[0,0,1]]}]}', 1,
     "json-nan-literal.json:1:")

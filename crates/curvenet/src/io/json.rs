@@ -1,5 +1,6 @@
 //! The reference JSON network format (docs/design.md §3):
 //! `{"curves": [{"name", "closed", "boundary", "points": [[x,y,z],…], "normals": [[…],…]}], "snap"}`.
+//! A curve without `normals` (or with `"normals": null`) has unknown normals: they are inferred.
 //! Unknown fields are ignored so that later extensions stay readable by older versions.
 
 use super::parse_error;
@@ -25,7 +26,9 @@ struct JsonCurve {
     #[serde(default)]
     boundary: bool,
     points: Vec<[f64; 3]>,
-    normals: Vec<[f64; 3]>,
+    /// Absent (or `null`): unknown, inferred (docs/design.md §12).
+    #[serde(default)]
+    normals: Option<Vec<[f64; 3]>>,
 }
 
 pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
@@ -45,7 +48,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
             .map(|c| Curve {
                 name: c.name,
                 points: c.points.iter().map(v).collect(),
-                normals: c.normals.iter().map(v).collect(),
+                normals: c.normals.iter().flatten().map(v).collect(),
                 closed: c.closed,
                 boundary: c.boundary,
             })
@@ -77,9 +80,11 @@ pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
         writeln!(w, "      \"boundary\": {},", c.boundary)?;
         writeln!(w, "      \"points\": [")?;
         write_points(w, &c.points)?;
-        writeln!(w, "      ],")?;
-        writeln!(w, "      \"normals\": [")?;
-        write_points(w, &c.normals)?;
+        if c.has_normals() {
+            writeln!(w, "      ],")?;
+            writeln!(w, "      \"normals\": [")?;
+            write_points(w, &c.normals)?;
+        }
         writeln!(w, "      ]")?;
         writeln!(w, "    }}{}", if ci + 1 < net.curves.len() { "," } else { "" })?;
     }

@@ -72,6 +72,13 @@ pub fn parse_network(text: &str, format: NetworkFormat, source: &str) -> Result<
 /// Writes a curve network; the format comes from the extension. Atomic.
 pub fn write_network(path: &Path, network: &Network) -> Result<()> {
     let format = NetworkFormat::from_path(path)?;
+    if format == NetworkFormat::Net && !network.has_all_normals() {
+        return Err(Error::usage(format!(
+            "{}: the .net format needs a normal at every sample; write .json or .obj (or infer the normals \
+             first: curvenet normals)",
+            path.display()
+        )));
+    }
     write_atomic(path, |w| match format {
         NetworkFormat::Json => json::write(w, network),
         NetworkFormat::Obj => obj::write(w, network),

@@ -3,6 +3,12 @@
 //! polylines (1-based or negative relative indices; `i/…` forms accepted), closed when the
 //! first and last index agree. Polylines under `g boundary` are boundary curves; `g`/`o` names
 //! name the curves. Other statements (`vt`, `f`, `usemtl`, …) are ignored.
+//!
+//! Without any `vn` the normals are unknown (inferred, docs/design.md §12), and the `l` lines
+//! may be an **edge soup** as exporters write it (Blender, Houdini: one `l a b` per edge): the
+//! lines of each group are chained into maximal polylines through the vertices they share,
+//! split at vertices where other than two edges meet (nodes) and closed where they come back
+//! to their start.
 
 use super::{parse_error, parse_f64, Tokens};
 use crate::error::Result;
@@ -81,6 +87,9 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
         let hint = if faces > 0 { " (the file has faces: it looks like a mesh, not a curve network)" } else { "" };
         return Err(parse_error(source, 1, 1, format!("no polylines (\"l\" lines) found{hint}")));
     }
+    if vn.is_empty() {
+        return chain_soup(polys.into_iter().map(|p| (p.name, p.boundary, p.idx)).collect(), &v, source);
+    }
     if vn.len() != v.len() {
         return Err(parse_error(
             source,
@@ -122,7 +131,113 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
     Ok(Network { curves, snap: None })
 }
 
+/// An `l` line's samples: `(line, column, index)` as read (1-based, resolved).
+type LineIndices = Vec<(usize, usize, i64)>;
+
+/// The curves of an OBJ without normals (module documentation): the `l` lines of each group
+/// (name and boundary flag) chained through their shared vertices into maximal polylines, split
+/// at vertices of valence other than 2.
+fn chain_soup(lines: Vec<(Option<String>, bool, LineIndices)>, v: &[DVec3], source: &str) -> Result<Network> {
+    // Groups in order of first appearance; edges per group.
+    let mut groups: Vec<(Option<String>, bool, Vec<[usize; 2]>)> = Vec::new();
+    for (name, boundary, idx) in lines {
+        let mut ids = Vec::with_capacity(idx.len());
+        for (line, col, i) in &idx {
+            if *i < 1 || *i as usize > v.len() {
+                return Err(parse_error(
+                    source,
+                    *line,
+                    *col,
+                    format!("vertex index {i} is out of range (the file has {} vertices)", v.len()),
+                ));
+            }
+            ids.push(*i as usize - 1);
+        }
+        let g = match groups.iter().position(|g| g.0 == name && g.1 == boundary) {
+            Some(g) => g,
+            None => {
+                groups.push((name, boundary, Vec::new()));
+                groups.len() - 1
+            }
+        };
+        groups[g].2.extend(ids.windows(2).filter(|w| w[0] != w[1]).map(|w| [w[0], w[1]]));
+    }
+    let mut curves = Vec::new();
+    for (name, boundary, edges) in groups {
+        for (k, (ids, closed)) in chain_edges(&edges).into_iter().enumerate() {
+            let name = name.as_ref().map(|n| if k == 0 { n.clone() } else { format!("{n}.{k}") });
+            curves.push(Curve {
+                name,
+                points: ids.iter().map(|&i| v[i]).collect(),
+                normals: Vec::new(),
+                closed,
+                boundary,
+            });
+        }
+    }
+    Ok(Network { curves, snap: None })
+}
+
+/// Maximal chains of the undirected `edges` (repeated edges counted once): vertex lists from
+/// one vertex of valence ≠ 2 to the next, and the closed loops of valence-2 vertices
+/// (`(vertices, closed)`, the loop's first vertex not repeated). Deterministic: chains start at
+/// the lowest vertex.
+pub(super) fn chain_edges(edges: &[[usize; 2]]) -> Vec<(Vec<usize>, bool)> {
+    let mut unique: Vec<[usize; 2]> = edges.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+    unique.sort_unstable();
+    unique.dedup();
+    let mut adjacent: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
+    for (e, &[a, b]) in unique.iter().enumerate() {
+        adjacent.entry(a).or_default().push(e);
+        adjacent.entry(b).or_default().push(e);
+    }
+    let mut used = vec![false; unique.len()];
+    let other = |e: usize, x: usize| if unique[e][0] == x { unique[e][1] } else { unique[e][0] };
+    let mut out = Vec::new();
+    // Walks from vertex `start` along edge `e` until a vertex of valence ≠ 2 or the start.
+    let walk = |start: usize, mut e: usize, used: &mut Vec<bool>| -> (Vec<usize>, bool) {
+        let mut chain = vec![start];
+        let mut at = start;
+        loop {
+            used[e] = true;
+            at = other(e, at);
+            if at == start {
+                return (chain, true);
+            }
+            chain.push(at);
+            let around = &adjacent[&at];
+            if around.len() != 2 {
+                return (chain, false);
+            }
+            match around.iter().find(|&&f| !used[f]) {
+                Some(&f) => e = f,
+                None => return (chain, false),
+            }
+        }
+    };
+    for (&x, around) in &adjacent {
+        if around.len() != 2 {
+            for &e in around {
+                if !used[e] {
+                    out.push(walk(x, e, &mut used));
+                }
+            }
+        }
+    }
+    for (&x, around) in &adjacent {
+        for &e in around {
+            if !used[e] {
+                out.push(walk(x, e, &mut used));
+            }
+        }
+    }
+    out
+}
+
 pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
+    if !net.has_all_normals() {
+        return write_without_normals(w, net);
+    }
     writeln!(w, "# curve network written by curvenet: v/vn pairs by index, one l per curve")?;
     let mut base = 1usize;
     for (ci, c) in net.curves.iter().enumerate() {
@@ -137,6 +252,33 @@ pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
         }
         for n in &c.normals {
             writeln!(w, "vn {:?} {:?} {:?}", n.x, n.y, n.z)?;
+        }
+        write!(w, "l")?;
+        for i in 0..c.points.len() {
+            write!(w, " {}", base + i)?;
+        }
+        if c.closed {
+            write!(w, " {base}")?;
+        }
+        writeln!(w)?;
+        base += c.points.len();
+    }
+    Ok(())
+}
+
+/// A network with curves without normals: `v` and `l` only (no `vn`: every normal unknown).
+fn write_without_normals(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
+    writeln!(w, "# curve network written by curvenet: v and one l per curve, no normals (inferred when read)")?;
+    let mut base = 1usize;
+    for (ci, c) in net.curves.iter().enumerate() {
+        let name = c.name.clone().unwrap_or_else(|| format!("curve{ci}"));
+        writeln!(
+            w,
+            "{}",
+            if c.boundary { "g boundary".to_string() } else { format!("g {}", name.replace(char::is_whitespace, "_")) }
+        )?;
+        for p in &c.points {
+            writeln!(w, "v {:?} {:?} {:?}", p.x, p.y, p.z)?;
         }
         write!(w, "l")?;
         for i in 0..c.points.len() {

@@ -20,7 +20,7 @@ pub struct Curve {
     pub points: Vec<DVec3>,
     /// Surface normals at the samples, same length as `points`; non-zero, need not be unit.
     /// They point to the outside of the surface (the side the user sees). **Empty: unknown** —
-    /// the pipeline infers them ([`crate::topology::orient`], docs/design.md §12).
+    /// the pipeline infers them (`topology::orient`, docs/design.md §12).
     pub normals: Vec<DVec3>,
     /// The last sample connects back to the first.
     pub closed: bool,
@@ -176,8 +176,7 @@ impl Network {
             let label = || curve_label(&self.curves, ci);
             if c.has_normals() && c.points.len() != c.normals.len() {
                 return Err(Error::input(format!(
-                    "{}: {} points but {} normals; every point needs one normal, in the same order (or leave \
-                     the normals out: they are then inferred)",
+                    "{}: {} points but {} normals; give one per point in the same order, or none (inferred)",
                     label(),
                     c.points.len(),
                     c.normals.len()

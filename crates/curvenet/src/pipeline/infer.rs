@@ -55,21 +55,38 @@ pub fn needs_inference(network: &Network, options: &Options) -> bool {
 pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     let start = Instant::now();
     check_options(options)?;
-    let (net, mut warnings) = network.validated()?;
-    let known: Vec<bool> =
+    let (mut net, mut warnings) = network.validated()?;
+    let mut known: Vec<bool> =
         net.curves.iter().map(|c| c.has_normals() && options.infer_normals == InferNormals::Missing).collect();
     if known.iter().all(|k| *k) {
         return Ok(Inferred { network: net, report: InferredNormals::default(), warnings });
     }
-    let mut work = net.clone();
-    for (c, k) in work.curves.iter_mut().zip(&known) {
-        if !k {
-            c.normals = vec![DVec3::ZERO; c.points.len()];
-        }
-    }
     let snap = options.mesh.snap.or(net.snap).unwrap_or_else(|| net.snap_tolerance());
-    let (mut g, w) = find_nodes(&work, snap)?;
-    warnings.extend(w);
+    let mut left_out = 0;
+    let mut g = loop {
+        let mut work = net.clone();
+        for (c, k) in work.curves.iter_mut().zip(&known) {
+            if !k {
+                c.normals = vec![DVec3::ZERO; c.points.len()];
+            }
+        }
+        match find_nodes(&work, snap) {
+            Ok((g, w)) => {
+                warnings.extend(w);
+                break g;
+            }
+            // A sketched stroke drawn twice (or along another): leave it out and say so.
+            Err(e) if is_overlap(&e).is_some_and(|c| !known[c]) && net.curves.len() > 1 => {
+                let c = is_overlap(&e).unwrap_or(0);
+                name_curves(&mut net);
+                warnings.push(Warning::new(format!("{e}: it was left out of the surface")));
+                net.curves.remove(c);
+                known.remove(c);
+                left_out += 1;
+            }
+            Err(e) => return Err(e),
+        }
+    };
     let splines = fit_splines(&g);
     let orient = orient_graph(&mut g, &splines, &known)?;
     fill_gaps(&mut g, &known);
@@ -79,6 +96,8 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
         nodes_from_tangents: orient.nodes_from_tangents,
         nodes_transported: orient.nodes_transported,
         doubtful_links: orient.doubtful_links,
+        contradictions: orient.contradictions.len(),
+        left_out,
         turned_outward: orient.flipped_components,
         ..Default::default()
     };
@@ -90,6 +109,24 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     find_patches_open(&mut trimmed, &splines)?;
     report.seconds = seconds_since(start);
     Ok(Inferred { network: with_graph_normals(&net, &g, &known), report, warnings })
+}
+
+/// The curve of an overlap error of node finding (a curve that runs along another).
+fn is_overlap(e: &crate::Error) -> Option<usize> {
+    match e {
+        crate::Error::Input { message, .. } if message.contains("runs within the snapping tolerance") => e.at().curve,
+        _ => None,
+    }
+}
+
+/// Names every unnamed curve of `net` by its index (`input curve 7`), so that messages keep
+/// naming the input's curves after some were left out.
+fn name_curves(net: &mut Network) {
+    for (i, c) in net.curves.iter_mut().enumerate() {
+        if c.name.is_none() {
+            c.name = Some(format!("input curve {i}"));
+        }
+    }
 }
 
 /// Adds what the inference `inferred` found to the `surface` of the network it made: its
@@ -138,7 +175,7 @@ fn fill_gaps(g: &mut Graph, known: &[bool]) {
                 break;
             }
         }
-        if sc.normals.iter().any(|n| *n == DVec3::ZERO) {
+        if sc.normals.contains(&DVec3::ZERO) {
             sc.normals.iter_mut().for_each(|n| *n = DVec3::Z);
         }
     }
@@ -159,10 +196,24 @@ fn with_graph_normals(net: &Network, g: &Graph, known: &[bool]) -> Network {
             }
         }
         // A sample that a node replaced keeps the node's normal; any left without (none in
-        // practice) takes its neighbour's.
-        for i in 0..curve.normals.len() {
+        // practice) takes its neighbour's. A normal within 60° of the polyline's own direction
+        // there (the spline's tangent differs from the chords at sharp bends of a sketched
+        // stroke) is taken across it.
+        let m = curve.points.len();
+        for i in 0..m {
             if curve.normals[i] == DVec3::ZERO {
                 curve.normals[i] = if i > 0 { curve.normals[i - 1] } else { DVec3::Z };
+            }
+            let (a, b) = match (i, curve.closed) {
+                (0, false) => (0, 1.min(m - 1)),
+                (_, false) if i + 1 == m => (i - 1, i),
+                _ => ((i + m - 1) % m, (i + 1) % m),
+            };
+            let t = (curve.points[b] - curve.points[a]).normalize_or_zero();
+            let n = curve.normals[i];
+            let across = (n - t * n.dot(t)).normalize_or_zero();
+            if n.dot(t).abs() > 0.5 && across != DVec3::ZERO {
+                curve.normals[i] = across;
             }
         }
     }

@@ -496,7 +496,7 @@ pub const OPTIONS: &[OptionSpec] = &[
         value_name: "missing|all",
         choices: &["missing", "all"],
         help: "Which curves' normals are inferred from the network's shape (tangent planes where curves \
-               cross, one orientation, a first positions-only surface): those of curves that come without \
+               cross, one orientation, least twist along the curves): those of curves that come without \
                normals (given normals win), or all of them (to compare with the given ones).",
         unset: None,
         aliases: &[],

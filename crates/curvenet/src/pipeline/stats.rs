@@ -82,6 +82,10 @@ pub struct InferredNormals {
     /// Links between nodes where the orientation was a guess (the carried normal far from the
     /// next node's tangent plane normal).
     pub doubtful_links: usize,
+    /// Segments along which the orientation contradicts itself (a warning names them).
+    pub contradictions: usize,
+    /// Curves left out because they run along another curve (a stroke drawn twice).
+    pub left_out: usize,
     /// Times a component (or the whole closed surface) was turned to face outward.
     pub turned_outward: usize,
     /// Seconds of the whole inference.

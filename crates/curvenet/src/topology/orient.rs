@@ -25,7 +25,7 @@
 
 use super::nodes::Graph;
 use crate::curves::CurveSpline;
-use crate::error::{Error, Result, Warning};
+use crate::error::{Result, Warning};
 use crate::geom::DVec3;
 
 /// Sines below this between the tangents at a node: the node has no tangent plane of its own
@@ -44,6 +44,8 @@ pub struct OrientReport {
     /// Segments along which the carried normal disagreed in sign with the node's own estimate
     /// beyond a right angle of doubt (|cos| < 0.5): the orientation there is a guess.
     pub doubtful_links: usize,
+    /// Segments along which the orientation contradicts itself (Möbius-like, or noise).
+    pub contradictions: Vec<usize>,
     /// Components turned around so that their normals point outward.
     pub flipped_components: usize,
     /// What was assumed, for the user.
@@ -122,11 +124,8 @@ pub fn transport(p: &[DVec3], t: &[DVec3], r: DVec3) -> Vec<DVec3> {
     for i in 0..p.len().saturating_sub(1) {
         let v1 = p[i + 1] - p[i];
         let c1 = v1.dot(v1);
-        let (rl, tl) = if c1 > 0.0 {
-            (r - v1 * (2.0 / c1 * v1.dot(r)), t[i] - v1 * (2.0 / c1 * v1.dot(t[i])))
-        } else {
-            (r, t[i])
-        };
+        let (rl, tl) =
+            if c1 > 0.0 { (r - v1 * (2.0 / c1 * v1.dot(r)), t[i] - v1 * (2.0 / c1 * v1.dot(t[i]))) } else { (r, t[i]) };
         let v2 = t[i + 1] - tl;
         let c2 = v2.dot(v2);
         let next = if c2 > 1e-30 { rl - v2 * (2.0 / c2 * v2.dot(rl)) } else { rl };
@@ -175,8 +174,8 @@ fn segment_path(g: &Graph, tangents: &[Vec<DVec3>], s: usize) -> (Vec<DVec3>, Ve
 /// the segments (module documentation, steps 1–3). `splines` are fitted to the graph's curves
 /// (their positions; the normals are not used).
 ///
-/// Errors ([`Error::Topology`]): a network whose orientation contradicts itself around a cycle
-/// of strongly agreeing links (a Möbius-like network), naming the segment.
+/// A network whose orientation contradicts itself around a cycle (a Möbius-like network) is
+/// reported in [`OrientReport::contradictions`] and a warning naming the segments.
 pub fn infer_normals(g: &mut Graph, splines: &[CurveSpline], known: &[bool]) -> Result<OrientReport> {
     let mut report = OrientReport { inferred_curves: known.iter().filter(|k| !**k).count(), ..Default::default() };
     let tangents: Vec<Vec<DVec3>> = (0..g.curves.len()).map(|c| sample_tangents(g, splines, c)).collect();
@@ -186,6 +185,17 @@ pub fn infer_normals(g: &mut Graph, splines: &[CurveSpline], known: &[bool]) -> 
     orient(g, &tangents, &estimates, &fixed, &mut report)?;
     fill_segments(g, &tangents, known);
     turn_outward(g, known, &fixed, &mut report);
+    for &s in report.contradictions.iter().take(5) {
+        report.warnings.push(
+            Warning::new(format!(
+                "the curves cannot be given one orientation everywhere: the normal carried along {} comes back \
+                 reversed at its end (a Möbius-like network, or a crossing whose tangent plane is unclear); \
+                 the surface may fold there — give the normals of some curves",
+                g.describe_segment(s)
+            ))
+            .curve(g.segments[s].curve),
+        );
+    }
     if report.doubtful_links > 0 {
         report.warnings.push(Warning::new(format!(
             "the orientation of {} link(s) between crossings is a guess (the normal carried along the curve \
@@ -227,7 +237,8 @@ fn orient(
             continue;
         }
         let members: Vec<usize> = (0..n).filter(|&v| comps[v] == root).collect();
-        let best = members.iter().filter_map(|&v| estimates[v].map(|(e, c)| (v, e, c))).max_by(|a, b| a.2.total_cmp(&b.2));
+        let best =
+            members.iter().filter_map(|&v| estimates[v].map(|(e, c)| (v, e, c))).max_by(|a, b| a.2.total_cmp(&b.2));
         let (v, normal) = match best {
             Some((v, e, _)) => (v, e),
             None => (root, shape_guess(g, tangents, &members, &adjacent)),
@@ -279,7 +290,8 @@ fn orient(
         done[to] = true;
         push_links(to, g, &mut heap);
     }
-    check_consistency(g, tangents, fixed)
+    report.contradictions = contradictions(g, tangents, fixed);
+    Ok(())
 }
 
 /// A total order on confidences for the priority queue.
@@ -307,28 +319,18 @@ fn carry(g: &Graph, tangents: &[Vec<DVec3>], s: usize, from: usize) -> DVec3 {
     transport(&p, &t, g.nodes[from].normal).last().copied().unwrap_or(DVec3::ZERO)
 }
 
-/// A Möbius-like network: a segment whose carried normal points against the normal of its
-/// other end although both ends have a confident estimate (the spanning tree cannot reach
-/// every link with one sign).
-fn check_consistency(g: &Graph, tangents: &[Vec<DVec3>], fixed: &[bool]) -> Result<()> {
-    for (s, seg) in g.segments.iter().enumerate() {
-        if seg.start == seg.end || (fixed[seg.start] && fixed[seg.end]) {
-            continue;
-        }
-        let carried = carry(g, tangents, s, seg.start);
-        if carried.dot(g.nodes[seg.end].normal) < -0.9 {
-            return Err(Error::topology(format!(
-                "the curves cannot be given one orientation: the normal carried along {} from node {} comes \
-                 back reversed at node {} (a Möbius-like network); give the normals of some curves",
-                g.describe_segment(s),
-                seg.start,
-                seg.end
-            ))
-            .curve(seg.curve)
-            .segment(s));
-        }
-    }
-    Ok(())
+/// The segments whose carried normal comes back reversed (beyond 155°) at their other end:
+/// the orientation contradicts itself around a cycle through them (a Möbius-like network, or
+/// tangent planes that noise turned over).
+fn contradictions(g: &Graph, tangents: &[Vec<DVec3>], fixed: &[bool]) -> Vec<usize> {
+    (0..g.segments.len())
+        .filter(|&s| {
+            let seg = &g.segments[s];
+            seg.start != seg.end
+                && !(fixed[seg.start] && fixed[seg.end])
+                && carry(g, tangents, s, seg.start).dot(g.nodes[seg.end].normal) < -0.9
+        })
+        .collect()
 }
 
 /// Turns each component that has no given normal so that its normals point outward: in each

@@ -32,3 +32,20 @@ fn malformed_reports_line_and_column() {
     }
     assert!(matches!(parse("{\"curves\": [", "x"), Err(Error::Parse { line: 1, .. })));
 }
+
+#[test]
+fn normals_may_be_left_out_or_null_per_curve() {
+    let text = r#"{"curves": [
+        {"points": [[0,0,0],[1,0,0]]},
+        {"points": [[0,0,0],[0,1,0]], "normals": null},
+        {"points": [[0,0,0],[0,0,1]], "normals": [[1,0,0],[1,0,0]]}]}"#;
+    let net = parse(text, "t.json").unwrap();
+    let known: Vec<bool> = net.curves.iter().map(|c| c.has_normals()).collect();
+    assert_eq!(known, vec![false, false, true]);
+    // Written back without a "normals" key where they are unknown.
+    let mut buf = Vec::new();
+    write(&mut buf, &net).unwrap();
+    let out = std::str::from_utf8(&buf).unwrap();
+    assert_eq!(out.matches("\"normals\"").count(), 1, "{out}");
+    assert_eq!(parse(out, "t").unwrap(), net);
+}

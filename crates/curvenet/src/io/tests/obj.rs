@@ -41,3 +41,49 @@ fn round_trip() {
     assert_eq!(back.curves[0].points, net.curves[0].points);
     assert!(back.curves[0].closed && back.curves[0].boundary);
 }
+
+#[test]
+fn without_normals_an_edge_soup_is_chained_into_curves_split_at_nodes() {
+    // A square loop 1-2-3-4 with a tail 3-5-6, written one edge per line in shuffled order,
+    // one edge twice, and a separate closed triangle 7-8-9.
+    let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 1 0\nv 3 1 0\nv 5 5 5\nv 6 5 5\nv 5 6 5\n\
+                l 2 3\nl 1 2\nl 4 1\nl 3 4\nl 5 6\nl 3 5\nl 1 2\nl 7 8 9 7\n";
+    let net = parse(text, "soup.obj").unwrap();
+    assert!(net.curves.iter().all(|c| !c.has_normals()));
+    let mut chains: Vec<(usize, bool)> = net.curves.iter().map(|c| (c.points.len(), c.closed)).collect();
+    chains.sort_unstable();
+    // The loop through node 3 (closed at it), the tail from node 3 to the end 6, the triangle.
+    assert_eq!(chains, vec![(3, false), (3, true), (4, true)]);
+}
+
+#[test]
+fn chains_split_at_every_vertex_of_valence_other_than_two() {
+    // A plus sign: four arms from the centre 0.
+    let chains = chain_edges(&[[0, 1], [1, 2], [0, 3], [3, 4], [0, 5], [0, 6], [6, 7]]);
+    assert_eq!(chains.len(), 4);
+    assert!(chains.iter().all(|(c, closed)| c[0] == 0 && !closed));
+    let mut lengths: Vec<usize> = chains.iter().map(|c| c.0.len()).collect();
+    lengths.sort_unstable();
+    assert_eq!(lengths, vec![2, 3, 3, 3]);
+}
+
+#[test]
+fn a_network_without_normals_round_trips_without_vn() {
+    let net = Network {
+        curves: vec![Curve {
+            name: Some("c".into()),
+            points: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+            normals: Vec::new(),
+            closed: true,
+            boundary: false,
+        }],
+        snap: None,
+    };
+    let mut buf = Vec::new();
+    write(&mut buf, &net).unwrap();
+    let text = std::str::from_utf8(&buf).unwrap();
+    assert!(!text.contains("vn "), "{text}");
+    let back = parse(text, "t").unwrap();
+    assert_eq!(back.curves[0].points, net.curves[0].points);
+    assert!(back.curves[0].closed && !back.curves[0].has_normals());
+}

@@ -11,7 +11,8 @@ fn unknown_graph(name: &str) -> (Graph, Vec<CurveSpline>, Vec<bool>) {
     }
     let snap = net.snap_tolerance();
     let (g, _) = find_nodes(&net, snap).unwrap();
-    let splines: Vec<CurveSpline> = g.curves.iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
+    let splines: Vec<CurveSpline> =
+        g.curves.iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
     let known = vec![false; g.curves.len()];
     (g, splines, known)
 }
@@ -29,14 +30,18 @@ fn tangent_plane_of_crossing_curves() {
 #[test]
 fn transport_along_a_planar_circle_stays_in_its_plane() {
     let k = 200;
-    let p: Vec<DVec3> = (0..=k).map(|i| {
-        let a = std::f64::consts::TAU * i as f64 / k as f64;
-        DVec3::new(a.cos(), a.sin(), 0.0)
-    }).collect();
-    let t: Vec<DVec3> = (0..=k).map(|i| {
-        let a = std::f64::consts::TAU * i as f64 / k as f64;
-        DVec3::new(-a.sin(), a.cos(), 0.0)
-    }).collect();
+    let p: Vec<DVec3> = (0..=k)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / k as f64;
+            DVec3::new(a.cos(), a.sin(), 0.0)
+        })
+        .collect();
+    let t: Vec<DVec3> = (0..=k)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / k as f64;
+            DVec3::new(-a.sin(), a.cos(), 0.0)
+        })
+        .collect();
     // The radial direction stays radial, the plane normal stays the plane normal.
     let radial = transport(&p, &t, DVec3::X);
     for (q, r) in p.iter().zip(&radial) {
@@ -118,7 +123,8 @@ fn given_normals_fix_the_orientation() {
         }
     }
     let (mut g, _) = find_nodes(&net, net.snap_tolerance()).unwrap();
-    let splines: Vec<CurveSpline> = g.curves.iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
+    let splines: Vec<CurveSpline> =
+        g.curves.iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
     infer_normals(&mut g, &splines, &known).unwrap();
     for c in &g.curves[1..] {
         for (p, n) in c.points.iter().zip(&c.normals) {
