@@ -120,8 +120,9 @@ fn cell_of(p: DVec3, h: f64) -> Cell {
     ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64)
 }
 
-/// The edges of all polylines in a uniform spatial hash: their boxes, inflated by the
-/// tolerance, in every cell of side `h` they meet.
+/// The edges of all polylines in a uniform spatial hash (cells of side `h`: the median edge
+/// length, at least twice the tolerance): each edge in the cells its pieces of length ≤ `h`,
+/// inflated by the tolerance, meet — linear in the edge's length, also for one long edge.
 struct EdgeHash {
     /// `(curve, edge)` of every edge.
     edges: Vec<(u32, u32)>,
@@ -129,8 +130,6 @@ struct EdgeHash {
     boxes: Vec<Aabb>,
     /// The edges whose box meets each cell.
     grid: HashMap<Cell, Vec<u32>>,
-    /// Cell size: the median edge length, at least twice the tolerance.
-    h: f64,
 }
 
 impl EdgeHash {
@@ -158,18 +157,33 @@ impl EdgeHash {
                 b
             })
             .collect();
+        // Each edge goes into the cells its pieces of length ≤ h meet (inflated by the
+        // tolerance), not every cell of its box: a long straight edge (a 2-sample CAD line
+        // across the network) fills a line of cells, not a slab of them.
         let mut grid: HashMap<Cell, Vec<u32>> = HashMap::new();
-        for (k, b) in boxes.iter().enumerate() {
-            let (lo, hi) = (cell_of(b.min, h), cell_of(b.max, h));
-            for x in lo.0..=hi.0 {
-                for y in lo.1..=hi.1 {
-                    for z in lo.2..=hi.2 {
-                        grid.entry((x, y, z)).or_default().push(k as u32);
+        let mut cells: Vec<Cell> = Vec::new();
+        for (k, &(c, e)) in edges.iter().enumerate() {
+            let (p, q) = lines.ends(c as usize, e as usize);
+            let pieces = ((p.distance(q) / h).ceil() as usize).clamp(1, 1 << 24);
+            cells.clear();
+            for i in 0..pieces {
+                let (a, b) = (p.lerp(q, i as f64 / pieces as f64), p.lerp(q, (i + 1) as f64 / pieces as f64));
+                let (lo, hi) = (cell_of(a.min(b) - DVec3::splat(snap), h), cell_of(a.max(b) + DVec3::splat(snap), h));
+                for x in lo.0..=hi.0 {
+                    for y in lo.1..=hi.1 {
+                        for z in lo.2..=hi.2 {
+                            cells.push((x, y, z));
+                        }
                     }
                 }
             }
+            cells.sort_unstable();
+            cells.dedup();
+            for &cell in &cells {
+                grid.entry(cell).or_default().push(k as u32);
+            }
         }
-        EdgeHash { edges, boxes, grid, h }
+        EdgeHash { edges, boxes, grid }
     }
 }
 
@@ -179,42 +193,48 @@ impl EdgeHash {
 /// dense samples) are not contacts. Sorted by curves, edges and position (deterministic).
 pub(super) fn find_contacts(lines: &Polylines, snap: f64) -> Vec<Hit> {
     let curves = lines.curves;
-    let EdgeHash { edges, boxes, grid, h } = EdgeHash::new(lines, snap);
-    // Hits: closest points of edge pairs within the tolerance.
-    let mut hits: Vec<Hit> = Vec::new();
-    for (cell, list) in &grid {
+    let EdgeHash { edges, boxes, grid } = EdgeHash::new(lines, snap);
+    // Candidate pairs: edges that share a cell and whose inflated boxes overlap (once each).
+    let mut pairs: Vec<(u32, u32)> = Vec::new();
+    for list in grid.values() {
         for (i, &ka) in list.iter().enumerate() {
             for &kb in &list[i + 1..] {
                 let (ba, bb) = (&boxes[ka as usize], &boxes[kb as usize]);
                 let lo = ba.min.max(bb.min);
                 let hi = ba.max.min(bb.max);
-                if lo.x > hi.x || lo.y > hi.y || lo.z > hi.z || cell_of(lo, h) != *cell {
-                    continue; // disjoint, or the pair is handled in another cell
+                if lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z {
+                    pairs.push((ka.min(kb), ka.max(kb)));
                 }
-                let (ca, ea) = (edges[ka as usize].0 as usize, edges[ka as usize].1 as usize);
-                let (cb, eb) = (edges[kb as usize].0 as usize, edges[kb as usize].1 as usize);
-                if ca == cb {
-                    let m = lines.num_edges(ca);
-                    let adjacent = ea.abs_diff(eb) <= 1 || (curves[ca].closed && ea.abs_diff(eb) == m - 1);
-                    if adjacent {
-                        continue;
-                    }
-                }
-                let (p0, p1) = lines.ends(ca, ea);
-                let (q0, q1) = lines.ends(cb, eb);
-                let (s, t) = closest_params_segment_segment(p0, p1, q0, q1);
-                let (pa, pb) = (p0.lerp(p1, s), q0.lerp(q1, t));
-                if pa.distance(pb) > snap {
-                    continue;
-                }
-                let a = Loc { curve: ca, edge: ea, s };
-                let b = Loc { curve: cb, edge: eb, s: t };
-                if ca == cb && lines.along(ca, lines.arc_at(a), lines.arc_at(b)) <= 4.0 * snap {
-                    continue; // the same stretch of curve (dense samples within the tolerance)
-                }
-                hits.push(Hit { mid: 0.5 * (pa + pb), a, b });
             }
         }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    // Hits: closest points of edge pairs within the tolerance.
+    let mut hits: Vec<Hit> = Vec::new();
+    for (ka, kb) in pairs {
+        let (ca, ea) = (edges[ka as usize].0 as usize, edges[ka as usize].1 as usize);
+        let (cb, eb) = (edges[kb as usize].0 as usize, edges[kb as usize].1 as usize);
+        if ca == cb {
+            let m = lines.num_edges(ca);
+            let adjacent = ea.abs_diff(eb) <= 1 || (curves[ca].closed && ea.abs_diff(eb) == m - 1);
+            if adjacent {
+                continue;
+            }
+        }
+        let (p0, p1) = lines.ends(ca, ea);
+        let (q0, q1) = lines.ends(cb, eb);
+        let (s, t) = closest_params_segment_segment(p0, p1, q0, q1);
+        let (pa, pb) = (p0.lerp(p1, s), q0.lerp(q1, t));
+        if pa.distance(pb) > snap {
+            continue;
+        }
+        let a = Loc { curve: ca, edge: ea, s };
+        let b = Loc { curve: cb, edge: eb, s: t };
+        if ca == cb && lines.along(ca, lines.arc_at(a), lines.arc_at(b)) <= 4.0 * snap {
+            continue; // the same stretch of curve (dense samples within the tolerance)
+        }
+        hits.push(Hit { mid: 0.5 * (pa + pb), a, b });
     }
     // Deterministic order regardless of hash iteration.
     hits.sort_by(|x, y| {
