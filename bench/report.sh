@@ -10,3 +10,5 @@ runs=5
 if [ "${1:-}" = "--quick" ]; then sizes=10000,100000; runs=3; fi
 target/release/curvenet bench --sizes "$sizes" --runs "$runs" --out docs/performance.md
 python3 bench/peer.py --sizes 10000,100000 --modes fast,default --runs "$runs" --report docs/performance.md
+target/release/curvenet bench --sizes 10000,100000 --modes fast,fast-nn,default,default-nn --runs "$runs" \
+  --out docs/performance.md --section no-normals

@@ -30,10 +30,14 @@ pub struct BenchArgs {
     /// Write the results as Markdown to this file.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// With --out: replace only the section between `<!-- NAME -->` and `<!-- /NAME -->` of the
+    /// file (appended when missing), keeping the rest.
+    #[arg(long, value_name = "NAME")]
+    section: Option<String>,
 }
 
-const STAGES: [&str; 9] =
-    ["read", "nodes", "resample", "cycles", "tessellate", "operators", "factor", "solve", "write"];
+const STAGES: [&str; 10] =
+    ["read", "normals", "nodes", "resample", "cycles", "tessellate", "operators", "factor", "solve", "write"];
 
 struct Row {
     network: String,
@@ -59,6 +63,9 @@ pub fn run(a: &BenchArgs) -> Result<(), Error> {
         let net = examples::example(name).ok_or_else(|| Error::usage(format!("unknown example \"{name}\"")))?;
         let input = dir.join(format!("{name}.json"));
         write_network(&input, &net)?;
+        // Modes ending in "-nn" surface the network with its normals removed (inferred).
+        let bare = dir.join(format!("{name}-nn.json"));
+        write_network(&bare, &net.without_normals())?;
         for &size in &a.sizes {
             for mode in &a.modes {
                 let runs = if size >= 500_000 { a.runs.clamp(1, 3) } else { a.runs.max(1) };
@@ -68,14 +75,22 @@ pub fn run(a: &BenchArgs) -> Result<(), Error> {
                 for _ in 0..runs {
                     let stats = dir.join("stats.json");
                     let mut cmd = Command::new(&exe);
-                    cmd.arg("surface").arg(&input).arg("-o").arg(dir.join("out.obj"));
+                    let (mode, input) = match mode.strip_suffix("-nn") {
+                        Some(m) => (m, &bare),
+                        None => (mode.as_str(), &input),
+                    };
+                    cmd.arg("surface").arg(input).arg("-o").arg(dir.join("out.obj"));
                     cmd.arg("--vertices").arg(size.to_string()).arg("--stats").arg(&stats).arg("-q");
-                    match mode.as_str() {
+                    match mode {
                         "fast" => {
                             cmd.arg("--fast");
                         }
                         "default" => {}
-                        other => return Err(Error::usage(format!("unknown mode \"{other}\" (fast, default)"))),
+                        other => {
+                            return Err(Error::usage(format!(
+                                "unknown mode \"{other}\" (fast, default; -nn: without normals)"
+                            )))
+                        }
                     }
                     let clock = Instant::now();
                     let out = cmd.output().map_err(|e| Error::Io { path: exe.display().to_string(), source: e })?;
@@ -120,7 +135,7 @@ pub fn run(a: &BenchArgs) -> Result<(), Error> {
                     row.vertices,
                     row.total,
                     row.wall,
-                    row.stages[6],
+                    row.stages[7],
                     row.peak.map(|p| format!("{:.0} MB", p as f64 / 1e6)).unwrap_or_else(|| "?".into())
                 );
                 rows.push(row);
@@ -130,7 +145,25 @@ pub fn run(a: &BenchArgs) -> Result<(), Error> {
     let _ = std::fs::remove_dir_all(&dir);
     let table = table(&rows);
     out!("{table}");
-    if let Some(path) = &a.out {
+    if let (Some(path), Some(name)) = (&a.out, &a.section) {
+        let old = std::fs::read_to_string(path).unwrap_or_default();
+        let (open, close) = (format!("<!-- {name} -->"), format!("<!-- /{name} -->"));
+        let body = format!(
+            "{open}\n`curvenet bench --sizes {} --networks {} --modes {} --runs {} --section {name}` \
+             (mode `-nn`: the same network with its normals removed, inferred by the run; `normals`: that \
+             stage's seconds).\n\n{table}{close}",
+            join(&a.sizes),
+            a.networks.join(","),
+            a.modes.join(","),
+            a.runs
+        );
+        let doc = match (old.find(&open), old.find(&close)) {
+            (Some(i), Some(j)) if j > i => format!("{}{body}{}", &old[..i], &old[j + close.len()..]),
+            _ => format!("{}\n{body}\n", old.trim_end()),
+        };
+        curvenet::io::write_text(path, &doc)?;
+        out!("wrote section {name} of {}", path.display());
+    } else if let Some(path) = &a.out {
         let mut doc = String::new();
         let _ = writeln!(doc, "# Performance\n");
         let _ = writeln!(
@@ -163,6 +196,11 @@ pub fn run(a: &BenchArgs) -> Result<(), Error> {
         out!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// `10000,100000`.
+fn join(v: &[usize]) -> String {
+    v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(",")
 }
 
 fn table(rows: &[Row]) -> String {

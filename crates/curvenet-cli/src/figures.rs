@@ -21,6 +21,10 @@ pub struct FiguresArgs {
     /// The real meshes (bumpy-cube.obj, fandisk.off); their figure is skipped when missing.
     #[arg(long, value_name = "DIR", default_value = "data/meshes")]
     data: PathBuf,
+    /// The 3D sketches without normals (computer-mouse.obj, vacuum.obj); their figure is skipped
+    /// when missing.
+    #[arg(long, value_name = "DIR", default_value = "data/sketches")]
+    sketches: PathBuf,
 }
 
 /// The methods compared, as in docs/accuracy.md: the baselines with the paper's planar
@@ -123,6 +127,7 @@ pub fn run(a: &FiguresArgs) -> Result<(), Error> {
     ];
     write(&a.out, "globe.png", render_panels(&panels, 2, 1400, 700)?)?;
     real_mesh_figure(&a.out, &a.data, a.vertices)?;
+    sketch_figure(&a.out, &a.sketches, a.vertices)?;
     out!("done in {:.1} s", start.elapsed().as_secs_f64());
     Ok(())
 }
@@ -154,4 +159,26 @@ fn real_mesh_figure(dir: &Path, data: &Path, vertices: usize) -> Result<(), Erro
         panels.push(panel(surfaced, Coloring::Isophotes, view, "isophotes".into(), None));
     }
     write(dir, "real-meshes.png", render_panels(&panels, 3, 2100, 1300)?)
+}
+
+/// 3D sketches without normals (CASSIE, OBJ edge soup): the strokes on the surface made from
+/// them with inferred normals, shaded and in isophotes.
+fn sketch_figure(dir: &Path, data: &Path, vertices: usize) -> Result<(), Error> {
+    let names = [("computer-mouse.obj", 30.0), ("vacuum.obj", 20.0)];
+    if !names.iter().all(|(n, _)| data.join(n).exists()) {
+        out!("  (sketch figure skipped: {} has no computer-mouse.obj, vacuum.obj)", data.display());
+        return Ok(());
+    }
+    let mut scenes = Vec::new();
+    for (name, azimuth) in names {
+        let net = curvenet::io::read_network(&data.join(name))?;
+        scenes.push((name, azimuth, scene(&net, &Options::default().with_vertices(vertices))?));
+    }
+    let mut panels = Vec::new();
+    for (name, azimuth, s) in &scenes {
+        let view = View { azimuth: *azimuth, elevation: 20.0, zoom: 1.0 };
+        panels.push(panel(s, Coloring::Shaded, view, format!("{name}: strokes, no normals -> surface"), None));
+        panels.push(panel(s, Coloring::Isophotes, view, "isophotes".into(), None));
+    }
+    write(dir, "sketches.png", render_panels(&panels, 4, 2400, 700)?)
 }
