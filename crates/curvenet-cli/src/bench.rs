@@ -32,7 +32,7 @@ pub struct BenchArgs {
     out: Option<PathBuf>,
     /// With --out: replace only the section between `<!-- NAME -->` and `<!-- /NAME -->` of the
     /// file (appended when missing), keeping the rest.
-    #[arg(long, value_name = "NAME")]
+    #[arg(long, value_name = "NAME", requires = "out")]
     section: Option<String>,
 }
 

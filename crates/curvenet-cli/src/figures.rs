@@ -21,8 +21,8 @@ pub struct FiguresArgs {
     /// The real meshes (bumpy-cube.obj, fandisk.off); their figure is skipped when missing.
     #[arg(long, value_name = "DIR", default_value = "data/meshes")]
     data: PathBuf,
-    /// The 3D sketches without normals (computer-mouse.obj, vacuum.obj); their figure is skipped
-    /// when missing.
+    /// The 3D sketches without normals (computer-mouse, hat, teapot, vacuum .obj); their figure
+    /// is skipped when missing.
     #[arg(long, value_name = "DIR", default_value = "data/sketches")]
     sketches: PathBuf,
 }
@@ -164,9 +164,9 @@ fn real_mesh_figure(dir: &Path, data: &Path, vertices: usize) -> Result<(), Erro
 /// 3D sketches without normals (CASSIE, OBJ edge soup): the strokes on the surface made from
 /// them with inferred normals, shaded and in isophotes.
 fn sketch_figure(dir: &Path, data: &Path, vertices: usize) -> Result<(), Error> {
-    let names = [("computer-mouse.obj", 30.0), ("vacuum.obj", 20.0)];
+    let names = [("computer-mouse.obj", 30.0), ("hat.obj", 30.0), ("teapot.obj", 30.0), ("vacuum.obj", 20.0)];
     if !names.iter().all(|(n, _)| data.join(n).exists()) {
-        out!("  (sketch figure skipped: {} has no computer-mouse.obj, vacuum.obj)", data.display());
+        out!("  (sketch figure skipped: {} lacks one of the sketches)", data.display());
         return Ok(());
     }
     let mut scenes = Vec::new();
@@ -180,5 +180,5 @@ fn sketch_figure(dir: &Path, data: &Path, vertices: usize) -> Result<(), Error> 
         panels.push(panel(s, Coloring::Shaded, view, format!("{name}: strokes, no normals -> surface"), None));
         panels.push(panel(s, Coloring::Isophotes, view, "isophotes".into(), None));
     }
-    write(dir, "sketches.png", render_panels(&panels, 4, 2400, 700)?)
+    write(dir, "sketches.png", render_panels(&panels, 4, 2400, 1300)?)
 }

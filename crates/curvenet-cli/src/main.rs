@@ -50,7 +50,8 @@ See README.md for the formats and the method.";
     name = "curvenet",
     version,
     about = "Surface a network of 3D curves (with or without normals) into a smooth triangle mesh",
-    long_about = "Turns a network of 3D curves sampled with surface normals into a smooth triangle mesh \
+    long_about = "Turns a network of 3D curves sampled with surface normals (or without: they are then inferred) \
+                  into a smooth triangle mesh \
                   (Stanko et al., \"Surfacing curve networks with normal control\", Computers & Graphics 2016).",
     after_help = AFTER_HELP
 )]

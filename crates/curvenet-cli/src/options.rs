@@ -107,7 +107,7 @@ impl Args for SolveArgs {
             }
             if spec.name == "infer_normals" {
                 // `--infer-normals` alone: re-infer every curve's normals.
-                arg = arg.num_args(0..=1).default_missing_value("all").require_equals(false);
+                arg = arg.num_args(0..=1).default_missing_value("all").require_equals(true);
             }
             cmd = cmd.arg(arg);
         }

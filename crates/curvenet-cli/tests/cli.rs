@@ -422,3 +422,42 @@ fn outputs_naming_the_same_file_are_a_usage_error() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("is the input file"));
     assert!(!dir.join("x.png").exists());
 }
+
+#[test]
+fn networks_without_normals_from_the_command_line() {
+    let dir = scratch("no-normals");
+    let p = |f: &str| dir.join(f).to_str().unwrap().to_string();
+    // example --no-normals, then `normals` writes them and `surface` infers them itself.
+    let o = run(&["example", "sphere", "--no-normals", "-o", &p("s.obj")]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(!std::fs::read_to_string(p("s.obj")).unwrap().contains("vn "));
+    let o = run(&["normals", &p("s.obj"), "-o", &p("s.json")]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let inferred = curvenet::io::read_network(Path::new(&p("s.json"))).unwrap();
+    for c in &inferred.curves {
+        for (q, n) in c.points.iter().zip(&c.normals) {
+            assert!(n.dot(q.normalize()) > 0.999, "normal {n} at {q}");
+        }
+    }
+    // --infer-normals alone before the positional input (it takes its value only with `=`).
+    let o = run(&[
+        "surface",
+        "--infer-normals",
+        &p("s.json"),
+        "-o",
+        &p("s.ply"),
+        "--vertices",
+        "2000",
+        "--stats",
+        &p("st.json"),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stats = std::fs::read_to_string(p("st.json")).unwrap();
+    assert!(stats.contains("\"inferred_normals\": {"), "{stats}");
+    // .net cannot hold a network without normals: a usage error, nothing written.
+    let o = run(&["example", "sphere", "--no-normals", "-o", &p("s.net")]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains(".net format needs a normal"), "{}", stderr(&o));
+    assert!(!Path::new(&p("s.net")).exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

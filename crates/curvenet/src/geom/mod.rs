@@ -66,6 +66,60 @@ pub fn plane_frame(n: DVec3) -> (DVec3, DVec3) {
     (e1, e2)
 }
 
+/// The unit eigenvector of the smallest eigenvalue of the symmetric 3×3 matrix `m` (cyclic
+/// Jacobi rotations; Golub and Van Loan, *Matrix Computations*, §8.5): the normal of the plane
+/// that best fits directions or points whose scatter matrix `m` is.
+pub fn smallest_eigenvector(m: [[f64; 3]; 3]) -> DVec3 {
+    let mut a = m;
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _ in 0..32 {
+        let off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+        if off <= 1e-30 * (a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2]).max(1e-300) {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if a[p][q] == 0.0 {
+                continue;
+            }
+            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let t = if theta == 0.0 { 1.0 } else { t };
+            let (c, s) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
+            for k in 0..3 {
+                let (akp, akq) = (a[k][p], a[k][q]);
+                a[k][p] = c * akp - s * akq;
+                a[k][q] = s * akp + c * akq;
+            }
+            for k in 0..3 {
+                let (apk, aqk) = (a[p][k], a[q][k]);
+                a[p][k] = c * apk - s * aqk;
+                a[q][k] = s * apk + c * aqk;
+            }
+            for row in v.iter_mut() {
+                let (vp, vq) = (row[p], row[q]);
+                row[p] = c * vp - s * vq;
+                row[q] = s * vp + c * vq;
+            }
+        }
+    }
+    let k = (0..3).min_by(|&i, &j| a[i][i].total_cmp(&a[j][j])).unwrap_or(0);
+    DVec3::new(v[0][k], v[1][k], v[2][k]).normalize_or_zero()
+}
+
+/// The scatter matrix `Σ (x − c)(x − c)ᵀ` of `xs` about `c`.
+pub fn scatter(xs: impl IntoIterator<Item = DVec3>, c: DVec3) -> [[f64; 3]; 3] {
+    let mut m = [[0.0; 3]; 3];
+    for x in xs {
+        let d = (x - c).to_array();
+        for i in 0..3 {
+            for j in 0..3 {
+                m[i][j] += d[i] * d[j];
+            }
+        }
+    }
+    m
+}
+
 /// Closest points of the segments `p0p1` and `q0q1`: returns `(s, t)` in `[0,1]²` such that
 /// `p0 + s (p1 − p0)` and `q0 + t (q1 − q0)` are closest (Ericson, *Real-Time Collision
 /// Detection*, §5.1.9). Degenerate (zero-length) segments are handled as points.

@@ -72,12 +72,8 @@ pub fn parse_network(text: &str, format: NetworkFormat, source: &str) -> Result<
 /// Writes a curve network; the format comes from the extension. Atomic.
 pub fn write_network(path: &Path, network: &Network) -> Result<()> {
     let format = NetworkFormat::from_path(path)?;
-    if format == NetworkFormat::Net && !network.has_all_normals() {
-        return Err(Error::usage(format!(
-            "{}: the .net format needs a normal at every sample; write .json or .obj (or infer the normals \
-             first: curvenet normals)",
-            path.display()
-        )));
+    if let Some(why) = unwritable(format, network) {
+        return Err(Error::usage(format!("{}: {why}", path.display())));
     }
     write_atomic(path, |w| match format {
         NetworkFormat::Json => json::write(w, network),
@@ -86,8 +82,29 @@ pub fn write_network(path: &Path, network: &Network) -> Result<()> {
     })
 }
 
-/// `network` as the text of a file in `format` (what [`write_network`] writes).
+/// Why `network` cannot be written in `format`: `.net` needs a normal at every sample; OBJ
+/// holds normals for every curve or for none.
+fn unwritable(format: NetworkFormat, network: &Network) -> Option<&'static str> {
+    let some = network.curves.iter().any(|c| c.has_normals());
+    match format {
+        NetworkFormat::Net if !network.has_all_normals() => Some(
+            "the .net format needs a normal at every sample; write .json or .obj (or infer the normals first: \
+             curvenet normals)",
+        ),
+        NetworkFormat::Obj if some && !network.has_all_normals() => Some(
+            "OBJ holds normals for every curve or for none, and some curves of this network have none; write \
+             .json (or infer the missing normals first: curvenet normals)",
+        ),
+        _ => None,
+    }
+}
+
+/// `network` as the text of a file in `format` (what [`write_network`] writes; empty for a
+/// network the format cannot hold, see [`write_network`]).
 pub fn network_to_string(network: &Network, format: NetworkFormat) -> String {
+    if unwritable(format, network).is_some() {
+        return String::new();
+    }
     let mut buf = Vec::new();
     let _ = match format {
         NetworkFormat::Json => json::write(&mut buf, network),

@@ -140,6 +140,7 @@ type LineIndices = Vec<(usize, usize, i64)>;
 fn chain_soup(lines: Vec<(Option<String>, bool, LineIndices)>, v: &[DVec3], source: &str) -> Result<Network> {
     // Groups in order of first appearance; edges per group.
     let mut groups: Vec<(Option<String>, bool, Vec<[usize; 2]>)> = Vec::new();
+    let mut group_of: std::collections::HashMap<(Option<String>, bool), usize> = std::collections::HashMap::new();
     for (name, boundary, idx) in lines {
         let mut ids = Vec::with_capacity(idx.len());
         for (line, col, i) in &idx {
@@ -153,13 +154,10 @@ fn chain_soup(lines: Vec<(Option<String>, bool, LineIndices)>, v: &[DVec3], sour
             }
             ids.push(*i as usize - 1);
         }
-        let g = match groups.iter().position(|g| g.0 == name && g.1 == boundary) {
-            Some(g) => g,
-            None => {
-                groups.push((name, boundary, Vec::new()));
-                groups.len() - 1
-            }
-        };
+        let g = *group_of.entry((name.clone(), boundary)).or_insert_with(|| {
+            groups.push((name, boundary, Vec::new()));
+            groups.len() - 1
+        });
         groups[g].2.extend(ids.windows(2).filter(|w| w[0] != w[1]).map(|w| [w[0], w[1]]));
     }
     let mut curves = Vec::new();

@@ -19,6 +19,12 @@ pub fn rotate_normals(network: &Network, curve: usize, degrees: f64) -> Result<N
         return Err(Error::usage(format!("rotation angle {degrees} is not a number")));
     }
     let n = c.points.len();
+    if !c.has_normals() {
+        return Err(Error::input(format!(
+            "{} has no normals to turn (they are inferred when it is surfaced; infer them first: curvenet normals)",
+            curve_label(&network.curves, curve)
+        )));
+    }
     if n < 2 || c.normals.len() != n {
         return Err(Error::input(format!(
             "{} has too few samples to have a tangent",

@@ -22,9 +22,10 @@ use crate::error::{Result, Warning};
 use crate::geom::DVec3;
 use crate::network::Network;
 use crate::solve::timing::{seconds_since, Instant};
-use crate::topology::cycles::find_patches_open;
+use crate::topology::cycles::{find_patches_open, half_edge_samples};
 use crate::topology::nodes::Graph;
 use crate::topology::orient::infer_normals as orient_graph;
+use crate::topology::Patch;
 use crate::topology::{find_nodes, trim_dangling};
 use rayon::prelude::*;
 
@@ -50,8 +51,8 @@ pub fn needs_inference(network: &Network, options: &Options) -> bool {
 /// tolerance.
 ///
 /// Errors: those of [`crate::surface`] for the network's validity and topology (dangling
-/// strokes, curves that bound no 2-manifold), and [`crate::Error::Topology`] for a network that
-/// cannot be oriented consistently.
+/// strokes, curves that bound no 2-manifold). A network whose orientation contradicts itself
+/// (a Möbius-like network) is a warning naming the segments, not an error.
 pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     let start = Instant::now();
     check_options(options)?;
@@ -106,9 +107,103 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     let mut trimmed = g.clone();
     warnings.extend(trim_dangling(&mut trimmed)?);
     let splines = fit_splines(&trimmed);
-    find_patches_open(&mut trimmed, &splines)?;
+    let (patches, _) = find_patches_open(&mut trimmed, &splines)?;
+    let mut network = with_graph_normals(&net, &g, &known);
+    // The tolerance the nodes were found with, also after curves were left out (the default
+    // follows the mean sample spacing).
+    network.snap = Some(snap);
+    for (curves, outer) in flat_components(&trimmed, &patches, &known) {
+        let names: Vec<&str> = curves.iter().take(6).map(|&c| trimmed.labels[c].as_str()).collect();
+        warnings.push(
+            Warning::new(format!(
+                "the curves {}{} enclose no volume (every cycle of them lies on one sheet): they were taken \
+                 as an open surface whose border is patch {outer}'s cycle (tagged as boundary)",
+                names.join(", "),
+                if curves.len() > names.len() { ", …" } else { "" }
+            ))
+            .curve(curves[0]),
+        );
+        report.opened_components += 1;
+        for c in curves {
+            network.curves[c].boundary = true;
+        }
+    }
     report.seconds = seconds_since(start);
-    Ok(Inferred { network: with_graph_normals(&net, &g, &known), report, warnings })
+    Ok(Inferred { network, report, warnings })
+}
+
+/// A component of `g` whose `patches` enclose (nearly) no volume — a loop of curves, or a
+/// planar-like network drawn without its border tagged, whose faces double-cover one sheet
+/// (each cycle seen from both sides) — is an open surface: its largest face is the outside.
+/// Returns, per such component, the curves to tag as boundary (the inferred curves all of
+/// whose segments lie on that face) and the face. The test: the volume enclosed by the faces
+/// (fans from their centres) below 5% of that of a sphere of the same area.
+fn flat_components(g: &Graph, patches: &[Patch], known: &[bool]) -> Vec<(Vec<usize>, usize)> {
+    let comps = g.node_components();
+    let mut by_comp: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
+    for (i, p) in patches.iter().enumerate() {
+        if let (Patch::Disk(hs), false) = (p, p.half_edges().iter().any(|h| g.segments[h.segment].boundary)) {
+            by_comp.entry(comps[g.segments[hs[0].segment].start]).or_default().push(i);
+        }
+    }
+    let mut out = Vec::new();
+    for list in by_comp.values() {
+        let cycles: Vec<Vec<DVec3>> = list
+            .iter()
+            .map(|&i| patches[i].half_edges().iter().flat_map(|&h| half_edge_samples(g, h)).map(|x| x.0).collect())
+            .collect();
+        let all: Vec<DVec3> = cycles.iter().flatten().copied().collect();
+        let o = all.iter().sum::<DVec3>() / all.len().max(1) as f64;
+        let (mut volume, mut areas) = (0.0, Vec::with_capacity(cycles.len()));
+        for cyc in &cycles {
+            let c = cyc.iter().sum::<DVec3>() / cyc.len().max(1) as f64;
+            let mut area = 0.0;
+            for k in 0..cyc.len() {
+                let (p, q) = (cyc[k], cyc[(k + 1) % cyc.len()]);
+                area += 0.5 * (p - c).cross(q - c).length();
+                volume += (c - o).dot((p - o).cross(q - o)) / 6.0;
+            }
+            areas.push(area);
+        }
+        let total: f64 = areas.iter().sum();
+        // A sphere of area A holds A^{3/2} / (6 √π).
+        let sphere = total.powf(1.5) / (6.0 * std::f64::consts::PI.sqrt());
+        if !(volume.abs() < 0.05 * sphere) || list.len() < 2 {
+            continue;
+        }
+        let k = (0..list.len()).max_by(|&a, &b| areas[a].total_cmp(&areas[b])).unwrap_or(0);
+        let outer = list[k];
+        let on_outer: std::collections::BTreeSet<usize> =
+            patches[outer].half_edges().iter().map(|h| h.segment).collect();
+        let curves: Vec<usize> = on_outer
+            .iter()
+            .map(|&s| g.segments[s].curve)
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .filter(|&c| {
+                !known[c] && g.segments.iter().enumerate().all(|(s, seg)| seg.curve != c || on_outer.contains(&s))
+            })
+            .collect();
+        if !curves.is_empty() {
+            out.push((curves, outer));
+        }
+    }
+    out
+}
+
+/// `e` from surfacing a network whose normals were (partly) inferred: input and topology errors
+/// about normals say that these normals were inferred, not given.
+pub(crate) fn explain(e: crate::Error) -> crate::Error {
+    match e {
+        crate::Error::Input { message, at } if message.contains("normal") => crate::Error::Input {
+            message: format!(
+                "{message} [these normals were inferred from the curves' shape: give the normals of the curves \
+                 there, or check that they cross cleanly]"
+            ),
+            at,
+        },
+        e => e,
+    }
 }
 
 /// The curve of an overlap error of node finding (a curve that runs along another).
@@ -129,14 +224,14 @@ fn name_curves(net: &mut Network) {
     }
 }
 
-/// Adds what the inference `inferred` found to the `surface` of the network it made: its
+/// Adds what the inference found (`report`, `warnings`) to the `surface` of the network it made: its
 /// statistics, its seconds and its warnings (first; the run's own after them, repeats left out).
-pub(crate) fn add_to_surface(surface: &mut super::Surface, inferred: Inferred) {
+pub(crate) fn add_to_surface(surface: &mut super::Surface, report: &InferredNormals, warnings: &[Warning]) {
     let t = &mut surface.stats.timings;
-    t.normals = inferred.report.seconds;
-    t.total += inferred.report.seconds;
-    surface.stats.inferred_normals = Some(inferred.report);
-    let mut warnings = inferred.warnings;
+    t.normals = report.seconds;
+    t.total += report.seconds;
+    surface.stats.inferred_normals = Some(report.clone());
+    let mut warnings = warnings.to_vec();
     for w in surface.warnings.drain(..) {
         if !warnings.contains(&w) {
             warnings.push(w);
@@ -181,6 +276,43 @@ fn fill_gaps(g: &mut Graph, known: &[bool]) {
     }
 }
 
+/// Takes every normal of `curve` across the polyline's own chords where it runs within 25° of
+/// one (the spline's tangent differs from the chords at the sharp bends and hooks of sketched
+/// strokes; validation refuses a normal along the curve): projected off the chord it is
+/// closest to, then off the other one if still needed.
+fn across_chords(curve: &mut crate::Curve) {
+    let m = curve.points.len();
+    for i in 0..m {
+        let chord = |a: usize, b: usize| (curve.points[b] - curve.points[a]).normalize_or_zero();
+        let before = if i > 0 {
+            chord(i - 1, i)
+        } else if curve.closed {
+            chord(m - 1, 0)
+        } else {
+            DVec3::ZERO
+        };
+        let after = if i + 1 < m {
+            chord(i, i + 1)
+        } else if curve.closed {
+            chord(m - 1, 0)
+        } else {
+            DVec3::ZERO
+        };
+        let mut n = curve.normals[i];
+        let mut chords = [before, after];
+        chords.sort_by(|a, b| b.dot(n).abs().total_cmp(&a.dot(n).abs()));
+        for t in chords {
+            if n.dot(t).abs() > 0.9 {
+                let across = (n - t * n.dot(t)).normalize_or_zero();
+                if across != DVec3::ZERO {
+                    n = across;
+                }
+            }
+        }
+        curve.normals[i] = n;
+    }
+}
+
 /// `net` with the normals of its inferred curves taken from the split curves of `g` (by each
 /// sample's origin).
 fn with_graph_normals(net: &Network, g: &Graph, known: &[bool]) -> Network {
@@ -196,26 +328,13 @@ fn with_graph_normals(net: &Network, g: &Graph, known: &[bool]) -> Network {
             }
         }
         // A sample that a node replaced keeps the node's normal; any left without (none in
-        // practice) takes its neighbour's. A normal within 60° of the polyline's own direction
-        // there (the spline's tangent differs from the chords at sharp bends of a sketched
-        // stroke) is taken across it.
-        let m = curve.points.len();
-        for i in 0..m {
+        // practice) takes its neighbour's.
+        for i in 0..curve.normals.len() {
             if curve.normals[i] == DVec3::ZERO {
                 curve.normals[i] = if i > 0 { curve.normals[i - 1] } else { DVec3::Z };
             }
-            let (a, b) = match (i, curve.closed) {
-                (0, false) => (0, 1.min(m - 1)),
-                (_, false) if i + 1 == m => (i - 1, i),
-                _ => ((i + m - 1) % m, (i + 1) % m),
-            };
-            let t = (curve.points[b] - curve.points[a]).normalize_or_zero();
-            let n = curve.normals[i];
-            let across = (n - t * n.dot(t)).normalize_or_zero();
-            if n.dot(t).abs() > 0.5 && across != DVec3::ZERO {
-                curve.normals[i] = across;
-            }
         }
+        across_chords(curve);
     }
     out
 }

@@ -47,11 +47,12 @@ pub fn surface_with_progress(
         None
     };
     let network = inferred.as_ref().map_or(network, |i| &i.network);
-    let prepared = prepare::prepare(network, options, progress)?;
+    let explain = |e| if inferred.is_some() { infer::explain(e) } else { e };
+    let prepared = prepare::prepare(network, options, progress).map_err(explain)?;
     let base = prepared.timings;
-    let mut surface = solve::solve_prepared(Cow::Owned(prepared), options, progress, None, base)?;
+    let mut surface = solve::solve_prepared(Cow::Owned(prepared), options, progress, None, base).map_err(explain)?;
     if let Some(i) = inferred {
-        infer::add_to_surface(&mut surface, i);
+        infer::add_to_surface(&mut surface, &i.report, &i.warnings);
     }
     Ok(surface)
 }

@@ -86,6 +86,9 @@ pub struct InferredNormals {
     pub contradictions: usize,
     /// Curves left out because they run along another curve (a stroke drawn twice).
     pub left_out: usize,
+    /// Components that enclose no volume, taken as open surfaces (their border tagged as
+    /// boundary).
+    pub opened_components: usize,
     /// Times a component (or the whole closed surface) was turned to face outward.
     pub turned_outward: usize,
     /// Seconds of the whole inference.

@@ -32,6 +32,9 @@ use std::borrow::Cow;
 /// A network prepared for repeated solves (see the module documentation).
 pub struct Surfacer {
     network: Network,
+    /// What the inference found when curves came without normals (added to the first solve's
+    /// surface).
+    inferred: Option<(super::InferredNormals, Vec<crate::Warning>)>,
     options: Options,
     prepared: Prepared,
     kept: Option<Kept>,
@@ -44,15 +47,19 @@ impl Surfacer {
     ///
     /// A network with curves without normals has them inferred first
     /// ([`crate::infer_normals`]); [`Surfacer::network`] is then the network with its inferred
-    /// normals, which the updates change.
+    /// normals, which the updates change and whose curve indices they take (a stroke left out
+    /// as a duplicate is not in it; the first solve's warnings name it). Moved points keep the
+    /// normals inferred for the first shape.
     pub fn new(network: &Network, options: &Options) -> Result<Self> {
-        let network = if super::infer::needs_inference(network, options) {
-            super::infer::infer_normals(network, options)?.network
+        let (network, inferred) = if super::infer::needs_inference(network, options) {
+            let i = super::infer::infer_normals(network, options)?;
+            (i.network, Some((i.report, i.warnings)))
         } else {
-            network.clone()
+            (network.clone(), None)
         };
-        let prepared = prepare(&network, options, &mut |_, _, _| {})?;
-        Ok(Surfacer { network, options: options.clone(), prepared, kept: None, solves: 0 })
+        let explain = |e| if inferred.is_some() { super::infer::explain(e) } else { e };
+        let prepared = prepare(&network, options, &mut |_, _, _| {}).map_err(explain)?;
+        Ok(Surfacer { network, inferred, options: options.clone(), prepared, kept: None, solves: 0 })
     }
 
     /// The network with the current normals.
@@ -88,9 +95,13 @@ impl Surfacer {
             Some(&mut self.kept),
             base,
         )?;
+        let mut surface = surface;
         if self.solves == 0 {
             // The conformal first solve belongs to the preparation: counted once.
             self.prepared.solve_timings = Default::default();
+            if let Some((report, warnings)) = &self.inferred {
+                super::infer::add_to_surface(&mut surface, report, warnings);
+            }
         }
         self.solves += 1;
         Ok(surface)

@@ -41,8 +41,8 @@ pub struct OrientReport {
     pub nodes_from_tangents: usize,
     /// Nodes whose normal was carried along a segment from a neighbour (no crossing).
     pub nodes_transported: usize,
-    /// Segments along which the carried normal disagreed in sign with the node's own estimate
-    /// beyond a right angle of doubt (|cos| < 0.5): the orientation there is a guess.
+    /// Links along which the carried normal is far from the next node's own estimate (|cos|
+    /// below half the estimate's confidence, about 60°–120° apart): the sign there is a guess.
     pub doubtful_links: usize,
     /// Segments along which the orientation contradicts itself (Möbius-like, or noise).
     pub contradictions: Vec<usize>,
@@ -74,8 +74,10 @@ pub fn node_estimates(g: &Graph, splines: &[CurveSpline]) -> Vec<Option<(DVec3, 
 }
 
 /// The normal of the plane that holds the unit directions `t` (\[CG\] §3.2: the curves at a
-/// node lie in its tangent plane): the sign-aligned sum of their pairwise cross products, with
-/// the largest sine between two of them as its confidence. `None` below [`MIN_NODE_SINE`].
+/// node lie in its tangent plane): for two directions their cross product, for more the
+/// direction of least scatter (the smallest eigenvector of `Σ t tᵀ`, independent of their
+/// order), with the largest sine between two of them as its confidence. `None` below
+/// [`MIN_NODE_SINE`].
 pub fn tangent_plane_normal(t: &[DVec3]) -> Option<(DVec3, f64)> {
     let mut best = (0.0, DVec3::ZERO);
     for i in 0..t.len() {
@@ -89,14 +91,16 @@ pub fn tangent_plane_normal(t: &[DVec3]) -> Option<(DVec3, f64)> {
     if best.0 < MIN_NODE_SINE {
         return None;
     }
-    let mut sum = DVec3::ZERO;
-    for i in 0..t.len() {
-        for j in i + 1..t.len() {
-            let c = t[i].cross(t[j]);
-            sum += if c.dot(best.1) < 0.0 { -c } else { c };
+    let n = if t.len() == 2 {
+        best.1.normalize_or_zero()
+    } else {
+        let n = crate::geom::smallest_eigenvector(crate::geom::scatter(t.iter().copied(), DVec3::ZERO));
+        if n.dot(best.1) < 0.0 {
+            -n
+        } else {
+            n
         }
-    }
-    let n = sum.normalize_or_zero();
+    };
     (n != DVec3::ZERO).then_some((n, best.0))
 }
 
@@ -337,7 +341,9 @@ fn contradictions(g: &Graph, tangents: &[Vec<DVec3>], fixed: &[bool]) -> Vec<usi
 /// of 26 directions `u` (the cube's faces, edges and corners) the sample farthest along `u` lies
 /// on the component's hull, where an outward normal points along `u`; the votes `n · u` decide.
 /// (On a closed surface the normal at its farthest point from any interior point points away
-/// from it; the network's extreme samples stand for the surface's.)
+/// from it; the network's extreme samples stand for the surface's.) When the votes nearly
+/// cancel (|Σ| < 1: an open sheet), the normals face the positive side of the coordinate axis
+/// their sum leans along most (a saddle over the xy-plane faces +z).
 fn turn_outward(g: &mut Graph, known: &[bool], fixed: &[bool], report: &mut OrientReport) {
     let comps = g.node_components();
     let n = g.nodes.len();
@@ -368,6 +374,13 @@ fn turn_outward(g: &mut Graph, known: &[bool], fixed: &[bool], report: &mut Orie
                 vote += normal.dot(*u);
             }
         }
+        // An open sheet (a saddle, a shield) has no outside: the votes nearly cancel. It then
+        // faces the positive side of the axis its normals lean along most.
+        if vote.abs() < 1.0 {
+            let sum: DVec3 = curves.iter().flat_map(|&c| g.curves[c].normals.iter().copied()).sum();
+            let axis = sum.abs().max_position();
+            vote = sum[axis];
+        }
         if vote < 0.0 {
             for v in (0..n).filter(|&v| comps[v] == root) {
                 g.nodes[v].normal = -g.nodes[v].normal;
@@ -384,18 +397,23 @@ fn turn_outward(g: &mut Graph, known: &[bool], fixed: &[bool], report: &mut Orie
 
 /// A normal for a component whose nodes have no tangent plane (loops that cross nothing,
 /// curves that only touch end to end): for the loop of a tube (another loop of the network
-/// faces it) the direction away from its centre, else the normal of the plane it spans
-/// (Newell's formula), else any direction across the curve.
+/// faces it) the direction away from its centre, else the normal of the plane its points
+/// span (least squares), else any direction across the curve.
 fn shape_guess(g: &Graph, tangents: &[Vec<DVec3>], members: &[usize], adjacent: &[Vec<usize>]) -> DVec3 {
     let v = members[0];
     let Some(&s) = adjacent[v].first() else { return DVec3::Z };
     let c = g.segments[s].curve;
     let pts = &g.curves[c].points;
     let t = tangents[c][g.segments[s].first % pts.len()];
-    let centre = pts.iter().sum::<DVec3>() / pts.len() as f64;
+    // The points of the whole component: a loop may be made of several open curves.
+    let curves: Vec<usize> =
+        (0..g.curves.len()).filter(|&k| g.curves[k].nodes.iter().any(|&(_, n)| members.contains(&n))).collect();
+    let all: Vec<DVec3> = curves.iter().flat_map(|&k| g.curves[k].points.iter().copied()).collect();
+    let centre = all.iter().sum::<DVec3>() / all.len().max(1) as f64;
     let across = |d: DVec3| (d - t * d.dot(t)).normalize_or_zero();
-    if g.curves[c].closed {
-        let plane = crate::geom::polygon_vector_area(pts).normalize_or_zero();
+    let looped = g.curves[c].closed || curves.iter().all(|&k| !g.curves[k].closed);
+    if looped && all.len() >= 3 {
+        let plane = crate::geom::smallest_eigenvector(crate::geom::scatter(all.iter().copied(), centre));
         if faces_another_loop(g, c, centre, plane) {
             let out = across(g.nodes[v].position - centre);
             if out != DVec3::ZERO {

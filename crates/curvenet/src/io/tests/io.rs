@@ -24,3 +24,19 @@ fn atomic_write_leaves_nothing_on_failure() {
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn obj_and_net_refuse_networks_they_cannot_hold() {
+    let mut net = crate::network::examples::example("sphere").unwrap();
+    net.curves[1].normals.clear();
+    let dir = std::env::temp_dir().join(format!("curvenet-io-mixed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in ["m.obj", "m.net"] {
+        let e = write_network(&dir.join(name), &net).unwrap_err();
+        assert!(matches!(e, crate::Error::Usage { .. }), "{e}");
+        assert!(!dir.join(name).exists());
+    }
+    assert_eq!(network_to_string(&net, NetworkFormat::Net), "");
+    write_network(&dir.join("m.json"), &net).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -82,3 +82,51 @@ fn a_single_open_stroke_is_refused() {
     assert!(matches!(e, Error::Topology { .. }), "{e}");
     assert!(e.to_string().contains("stroke"), "{e}");
 }
+
+#[test]
+fn node_finding_takes_a_validated_network_without_normals() {
+    let (net, _) = example("sphere").unwrap().without_normals().validated().unwrap();
+    let (g, _) = crate::topology::find_nodes(&net, net.snap_tolerance()).unwrap();
+    assert_eq!(g.nodes.len(), 6);
+    assert!(g.nodes.iter().all(|n| n.normal == DVec3::ZERO));
+}
+
+/// A unit circle in the plane z = 0 as `k` open arcs that meet end to end, without normals.
+fn circle_of_arcs(k: usize) -> Network {
+    let arc = |j: usize| crate::Curve {
+        name: None,
+        points: (0..=32)
+            .map(|i| {
+                let a = std::f64::consts::TAU * (j as f64 + i as f64 / 32.0) / k as f64;
+                DVec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .collect(),
+        ..Default::default()
+    };
+    Network { curves: (0..k).map(arc).collect(), snap: None }
+}
+
+#[test]
+fn a_loop_of_open_arcs_is_a_disk() {
+    // The arcs meet tangentially (no tangent plane at the joints): the plane of their points.
+    let inferred = infer_normals(&circle_of_arcs(2), &Options::default()).unwrap();
+    for c in &inferred.network.curves {
+        assert!(c.normals.iter().all(|n| n.z.abs() > 0.999), "{:?}", &c.normals[..3]);
+    }
+    // Three arcs: a loop of curves without anything inside is an open disk, not two faces
+    // back to back.
+    let s = crate::surface(&circle_of_arcs(3), &Options::default().with_vertices(2000)).unwrap();
+    assert_eq!(s.stats.cycles, 1, "{:?}", s.warnings);
+    assert!(s.mesh.positions.iter().all(|p| p.z.abs() < 1e-6));
+    assert_eq!(s.stats.inferred_normals.as_ref().unwrap().opened_components, 1);
+}
+
+#[test]
+fn surfacer_reports_the_inference_on_its_first_solve() {
+    let net = example("sphere").unwrap().without_normals();
+    let mut s = crate::Surfacer::new(&net, &Options::fast().with_vertices(2000)).unwrap();
+    assert!(s.network().has_all_normals());
+    let first = s.solve().unwrap();
+    assert_eq!(first.stats.inferred_normals.as_ref().map(|r| r.curves), Some(3));
+    assert!(s.solve().unwrap().stats.inferred_normals.is_none());
+}

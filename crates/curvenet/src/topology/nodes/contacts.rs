@@ -84,9 +84,12 @@ impl<'a> Polylines<'a> {
     }
 
     /// Unit normal at a location: the normals of the edge's ends interpolated (the first one
-    /// where they cancel out).
+    /// where they cancel out); zero on a curve without normals (unknown).
     pub(super) fn normal_at(&self, l: Loc) -> DVec3 {
         let c = &self.curves[l.curve];
+        if !c.has_normals() {
+            return DVec3::ZERO;
+        }
         let n0 = c.normals[l.edge];
         let n1 = c.normals[(l.edge + 1) % c.points.len()];
         let n = n0.lerp(n1, l.s);

@@ -122,6 +122,8 @@ impl Graph {
 }
 
 /// Finds the nodes of a validated network and splits its curves into segments (\[CG\] §3.2).
+/// A curve without normals gets zero normals in the graph (unknown; a node only such curves
+/// pass has a zero normal): [`super::orient`] fills them in.
 ///
 /// `snap` is the snapping tolerance (a distance). Errors ([`crate::Error::Input`], naming the
 /// curve and a point): curves that overlap (run within the tolerance of each other over a

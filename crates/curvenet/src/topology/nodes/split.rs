@@ -17,7 +17,10 @@ pub(super) fn add_end_nodes(lines: &Polylines, nodes: &mut Vec<Node>, on_curve: 
         let total = lines.total(c);
         if curve.closed {
             if on_curve[c].is_empty() {
-                nodes.push(Node { position: curve.points[0], normal: curve.normals[0] });
+                nodes.push(Node {
+                    position: curve.points[0],
+                    normal: curve.normals.first().copied().unwrap_or(DVec3::ZERO),
+                });
                 on_curve[c].push((0.0, nodes.len() - 1));
             }
             continue;
@@ -25,11 +28,17 @@ pub(super) fn add_end_nodes(lines: &Polylines, nodes: &mut Vec<Node>, on_curve: 
         let near = |x: f64, list: &[(f64, usize)]| list.iter().any(|&(a, _)| (a - x).abs() <= snap.max(1e-12 * total));
         let last = curve.points.len() - 1;
         if !near(0.0, &on_curve[c]) {
-            nodes.push(Node { position: curve.points[0], normal: curve.normals[0] });
+            nodes.push(Node {
+                position: curve.points[0],
+                normal: curve.normals.first().copied().unwrap_or(DVec3::ZERO),
+            });
             on_curve[c].push((0.0, nodes.len() - 1));
         }
         if !near(total, &on_curve[c]) {
-            nodes.push(Node { position: curve.points[last], normal: curve.normals[last] });
+            nodes.push(Node {
+                position: curve.points[last],
+                normal: curve.normals.get(last).copied().unwrap_or(DVec3::ZERO),
+            });
             on_curve[c].push((total, nodes.len() - 1));
         }
     }
@@ -106,7 +115,7 @@ pub(super) fn split_curve(lines: &Polylines, c: usize, list: &mut [(f64, usize)]
             }
             None => {
                 points.push(curve.points[i]);
-                normals.push(curve.normals[i]);
+                normals.push(curve.normals.get(i).copied().unwrap_or(DVec3::ZERO));
             }
         }
         while k < inserts.len() && inserts[k].0 == i {
