@@ -10,17 +10,17 @@
 //!    tangents: the sum of the pairwise cross products, signs aligned). This is exact on any
 //!    smooth surface; only its sign is unknown. Where the tangents are (nearly) parallel the
 //!    node has no estimate of its own.
-//! 2. **Orientation** ([`orient`]): one sign for the whole network. A node's normal is carried
+//! 2. **Orientation** (`orient`): one sign for the whole network. A node's normal is carried
 //!    along each segment to the next node by parallel transport (rotation-minimising frames,
 //!    double reflection, Wang et al. 2008) and compared with that node's estimate; the signs
 //!    are fixed along a maximum spanning tree of these agreements, starting from the curves
 //!    whose normals were given. Nodes without an estimate take the transported normal.
-//! 3. **Along the segments** ([`fill_segments`]): the start node's normal transported along the
+//! 3. **Along the segments** (`fill_segments`): the start node's normal transported along the
 //!    segment, turned about the tangent by a share of the angle it misses the end node's
 //!    normal by that grows with the arc length. Loops without a crossing take the normal of
 //!    their plane (a disk) or, when two loops face each other, the direction away from their
 //!    centre (a tube: two parallel circles bound a cylinder). A component without any given
-//!    normal is then turned outward ([`turn_outward`]: at the network's extreme samples the
+//!    normal is then turned outward (`turn_outward`: at the network's extreme samples the
 //!    normals point away).
 
 use super::nodes::Graph;
@@ -30,7 +30,7 @@ use crate::geom::DVec3;
 
 /// Sines below this between the tangents at a node: the node has no tangent plane of its own
 /// (the curves pass it in one direction).
-const MIN_NODE_SINE: f64 = 0.05;
+pub const MIN_NODE_SINE: f64 = 0.05;
 
 /// What the inference found and assumed, for the run's statistics and warnings.
 #[derive(Clone, Debug, Default, PartialEq)]
