@@ -187,7 +187,9 @@ def test_options_come_from_the_library():
     # The CLI has a flag for each.
     out = subprocess.run([cli(), "surface", "--help"], check=True, capture_output=True, text=True).stdout
     for name in names:
-        assert f"--{name.replace('_', '-')} " in out, name
+        flag = f"--{name.replace('_', '-')}"
+        # `--name VALUE`, or `--name[=VALUE]` for a flag whose value is optional.
+        assert f"{flag} " in out or f"{flag}[=" in out, name
     for name, (_value, choices, help_, default) in curvenet.OPTIONS.items():
         assert len(help_) > 20 and default, name
 
