@@ -81,3 +81,125 @@ fn sketches_without_normals_surface_through_their_strokes() {
         assert!(share >= 0.95, "{name}: only {:.1}% of the input vertices near the surface", 100.0 * share);
     }
 }
+
+/// A closed curve through `f(2πk/n)`, `k < n`, with normals `g` (the truth's).
+fn closed(n: usize, f: impl Fn(f64) -> DVec3, g: impl Fn(DVec3) -> DVec3, boundary: bool) -> curvenet::Curve {
+    let points: Vec<DVec3> = (0..n).map(|k| f(std::f64::consts::TAU * k as f64 / n as f64)).collect();
+    let normals = points.iter().map(|&p| g(p)).collect();
+    curvenet::Curve { name: None, points, normals, closed: true, boundary }
+}
+
+/// The network as an OBJ edge soup: vertices shared by position, one `l a b` per edge, the
+/// boundary curves under `g boundary` — as an exporter writes it.
+fn edge_soup(net: &Network) -> Network {
+    let mut ids: std::collections::HashMap<[i64; 3], usize> = std::collections::HashMap::new();
+    let (mut v, mut lines) = (String::new(), [String::new(), String::new()]);
+    for c in &net.curves {
+        let mut k: Vec<usize> = c
+            .points
+            .iter()
+            .map(|p| {
+                let key = [(p.x * 1e9).round() as i64, (p.y * 1e9).round() as i64, (p.z * 1e9).round() as i64];
+                let n = ids.len() + 1;
+                *ids.entry(key).or_insert_with(|| {
+                    v.push_str(&format!("v {} {} {}\n", p.x, p.y, p.z));
+                    n
+                })
+            })
+            .collect();
+        if c.closed {
+            k.push(k[0]);
+        }
+        for w in k.windows(2) {
+            lines[c.boundary as usize].push_str(&format!("l {} {}\n", w[0], w[1]));
+        }
+    }
+    let text = format!("{v}g curves\n{}g boundary\n{}", lines[0], lines[1]);
+    curvenet::io::parse_network(&text, curvenet::io::NetworkFormat::Obj, "soup.obj").unwrap()
+}
+
+#[test]
+fn ellipsoid_tori_and_cone_without_normals_as_json_and_edge_soup() {
+    use std::f64::consts::TAU;
+    let (a, b, c) = (2.0, 1.5, 1.0);
+    let ellipsoid = Network {
+        curves: vec![
+            closed(160, |u| DVec3::new(a * u.cos(), b * u.sin(), 0.0), |p| p / DVec3::new(a * a, b * b, c * c), false),
+            closed(160, |u| DVec3::new(0.0, b * u.cos(), c * u.sin()), |p| p / DVec3::new(a * a, b * b, c * c), false),
+            closed(160, |u| DVec3::new(a * u.sin(), 0.0, c * u.cos()), |p| p / DVec3::new(a * a, b * b, c * c), false),
+        ],
+        snap: None,
+    };
+    let torus = |big: f64, r: f64| {
+        let normal = move |p: DVec3| p - DVec3::new(p.x, p.y, 0.0).normalize() * big;
+        let mut curves: Vec<curvenet::Curve> = (0..4)
+            .map(|k| {
+                let ph = TAU * k as f64 / 4.0;
+                closed(
+                    160,
+                    move |t| DVec3::new((big + r * t.cos()) * ph.cos(), (big + r * t.cos()) * ph.sin(), r * t.sin()),
+                    normal,
+                    false,
+                )
+            })
+            .collect();
+        for rr in [big + r, big - r] {
+            curves.push(closed(160, move |t| DVec3::new(rr * t.cos(), rr * t.sin(), 0.0), normal, false));
+        }
+        Network { curves, snap: None }
+    };
+    // The cone z = 2 − ρ (45°) between ρ = 0.5 and 1.5: boundary circles, a middle circle and six
+    // rulings.
+    let cone_normal = |p: DVec3| DVec3::new(p.x, p.y, 0.0).normalize() + DVec3::Z;
+    let mut cone = Network { curves: Vec::new(), snap: None };
+    for rr in [0.5, 1.0, 1.5] {
+        cone.curves.push(closed(
+            160,
+            move |t| DVec3::new(rr * t.cos(), rr * t.sin(), 2.0 - rr),
+            cone_normal,
+            rr != 1.0,
+        ));
+    }
+    for k in 0..6 {
+        let ph = TAU * k as f64 / 6.0;
+        let points: Vec<DVec3> = (0..=40)
+            .map(|j| 0.5 + j as f64 / 40.0)
+            .map(|rr| DVec3::new(rr * ph.cos(), rr * ph.sin(), 2.0 - rr))
+            .collect();
+        let normals = points.iter().map(|&p| cone_normal(p)).collect();
+        cone.curves.push(curvenet::Curve { name: None, points, normals, closed: false, boundary: false });
+    }
+    type Distance = Box<dyn Fn(DVec3) -> f64>;
+    let cases: Vec<(&str, Network, Distance)> = vec![
+        ("ellipsoid", ellipsoid, {
+            let t = curvenet::metrics::Truth::Ellipsoid { axes: DVec3::new(a, b, c) };
+            Box::new(move |p| t.distance(p))
+        }),
+        ("torus 4, 2", torus(4.0, 2.0), {
+            let t = curvenet::metrics::Truth::Torus { major: 4.0, minor: 2.0 };
+            Box::new(move |p| t.distance(p))
+        }),
+        ("torus 3, 1", torus(3.0, 1.0), {
+            let t = curvenet::metrics::Truth::Torus { major: 3.0, minor: 1.0 };
+            Box::new(move |p| t.distance(p))
+        }),
+        ("cone", cone, Box::new(|p: DVec3| (p.z - (2.0 - p.x.hypot(p.y))).abs() / 2f64.sqrt())),
+    ];
+    let options = Options::default().with_vertices(10_000);
+    for (name, net, distance) in cases {
+        let rms = |net: &Network| {
+            let s = surface(net, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let d: Vec<f64> = s.mesh.positions.iter().map(|&p| distance(p)).collect();
+            (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt()
+        };
+        let diag = net.bounding_box().diagonal();
+        let with = rms(&net);
+        let limit = (3.0 * with).max(2e-3 * diag);
+        for (form, bare) in [("JSON", net.without_normals()), ("edge soup", edge_soup(&net))] {
+            assert!(!bare.curves.iter().any(|c| c.has_normals()));
+            let without = rms(&bare);
+            eprintln!("{name} ({form}): with {with:.3e}, without {without:.3e}");
+            assert!(without <= limit, "{name} ({form}): without normals {without:.3e}, with {with:.3e}");
+        }
+    }
+}
