@@ -66,6 +66,36 @@ pub fn plane_frame(n: DVec3) -> (DVec3, DVec3) {
     (e1, e2)
 }
 
+/// A cell of a uniform grid: the integer coordinates of `p / h`, floored.
+pub type GridCell = (i64, i64, i64);
+
+/// The cell of side `h` that holds `p`.
+pub fn grid_cell(p: DVec3, h: f64) -> GridCell {
+    ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64)
+}
+
+/// The cells of side `h` that the segment `ab` inflated by `pad` meets, each once (sorted):
+/// the boxes of its pieces of length ≤ `h`, so that a long segment fills a line of cells, not
+/// the slab of its bounding box (a 2-sample CAD edge across a whole network). The spatial
+/// index of node finding, of the sampler's boundary and near-miss grids.
+pub fn segment_cells(a: DVec3, b: DVec3, pad: f64, h: f64, out: &mut Vec<GridCell>) {
+    out.clear();
+    let pieces = ((a.distance(b) / h).ceil() as usize).clamp(1, 1 << 24);
+    for i in 0..pieces {
+        let (p, q) = (a.lerp(b, i as f64 / pieces as f64), a.lerp(b, (i + 1) as f64 / pieces as f64));
+        let (lo, hi) = (grid_cell(p.min(q) - DVec3::splat(pad), h), grid_cell(p.max(q) + DVec3::splat(pad), h));
+        for x in lo.0..=hi.0 {
+            for y in lo.1..=hi.1 {
+                for z in lo.2..=hi.2 {
+                    out.push((x, y, z));
+                }
+            }
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+}
+
 /// The unit eigenvector of the smallest eigenvalue of the symmetric 3×3 matrix `m` (cyclic
 /// Jacobi rotations; Golub and Van Loan, *Matrix Computations*, §8.5): the normal of the plane
 /// that best fits directions or points whose scatter matrix `m` is.

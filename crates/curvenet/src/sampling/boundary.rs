@@ -110,26 +110,19 @@ struct BoundaryGrid {
 
 impl BoundaryGrid {
     /// The boundary edges of `edge_faces` (with vertex `positions`) in cells of size `h`
-    /// (edges across more than 4096 cells are left out).
+    /// (each in the cells along it, [`crate::geom::segment_cells`]: also a long edge).
     fn new(positions: &[DVec3], edge_faces: &EdgeFaces, h: f64) -> Self {
         let h = h.max(f64::MIN_POSITIVE);
         let mut cells: HashMap<(i64, i64, i64), Vec<(u32, u32)>> = HashMap::new();
-        let cell = |p: DVec3| ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
+        let mut along = Vec::new();
         for (e, fs) in edge_faces {
             if fs.len() != 1 {
                 continue;
             }
             let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
-            let (lo, hi) = (cell(a.min(b)), cell(a.max(b)));
-            if (hi.0 - lo.0 + 1) * (hi.1 - lo.1 + 1) * (hi.2 - lo.2 + 1) > 4096 {
-                continue;
-            }
-            for x in lo.0..=hi.0 {
-                for y in lo.1..=hi.1 {
-                    for z in lo.2..=hi.2 {
-                        cells.entry((x, y, z)).or_default().push(*e);
-                    }
-                }
+            crate::geom::segment_cells(a, b, 0.0, h, &mut along);
+            for &cell in &along {
+                cells.entry(cell).or_default().push(*e);
             }
         }
         BoundaryGrid { h, cells }

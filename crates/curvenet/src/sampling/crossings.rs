@@ -146,20 +146,14 @@ pub(super) fn near_misses(
 ) -> Vec<(usize, DVec3)> {
     use crate::geom::closest_params_segment_segment;
     let h = near.max(f64::MIN_POSITIVE);
-    let cell = |p: DVec3| ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
     let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
+    let mut along = Vec::new();
     for (i, c) in cuts.iter().enumerate() {
-        let lo = cell(c.ends[0].min(c.ends[1]) - DVec3::splat(near));
-        let hi = cell(c.ends[0].max(c.ends[1]) + DVec3::splat(near));
-        if (hi.0 - lo.0 + 1) * (hi.1 - lo.1 + 1) * (hi.2 - lo.2 + 1) > 4096 {
-            continue; // a cut far longer than the tolerance (coarse mesh): checked from its neighbours
-        }
-        for x in lo.0..=hi.0 {
-            for y in lo.1..=hi.1 {
-                for z in lo.2..=hi.2 {
-                    grid.entry((x, y, z)).or_default().push(i);
-                }
-            }
+        // Each cut in the cells along it (a cut far longer than the tolerance on a coarse mesh
+        // fills a line of cells, not its box).
+        crate::geom::segment_cells(c.ends[0], c.ends[1], near, h, &mut along);
+        for &cell in &along {
+            grid.entry(cell).or_default().push(i);
         }
     }
     let mut seen = std::collections::HashSet::new();

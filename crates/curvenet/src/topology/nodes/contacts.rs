@@ -167,21 +167,7 @@ impl EdgeHash {
         let mut cells: Vec<Cell> = Vec::new();
         for (k, &(c, e)) in edges.iter().enumerate() {
             let (p, q) = lines.ends(c as usize, e as usize);
-            let pieces = ((p.distance(q) / h).ceil() as usize).clamp(1, 1 << 24);
-            cells.clear();
-            for i in 0..pieces {
-                let (a, b) = (p.lerp(q, i as f64 / pieces as f64), p.lerp(q, (i + 1) as f64 / pieces as f64));
-                let (lo, hi) = (cell_of(a.min(b) - DVec3::splat(snap), h), cell_of(a.max(b) + DVec3::splat(snap), h));
-                for x in lo.0..=hi.0 {
-                    for y in lo.1..=hi.1 {
-                        for z in lo.2..=hi.2 {
-                            cells.push((x, y, z));
-                        }
-                    }
-                }
-            }
-            cells.sort_unstable();
-            cells.dedup();
+            crate::geom::segment_cells(p, q, snap, h, &mut cells);
             for &cell in &cells {
                 grid.entry(cell).or_default().push(k as u32);
             }
