@@ -203,3 +203,43 @@ fn ellipsoid_tori_and_cone_without_normals_as_json_and_edge_soup() {
         }
     }
 }
+
+#[test]
+fn wireframes_and_lone_loops_without_normals() {
+    let parse = |text: &str| curvenet::io::parse_network(text, curvenet::io::NetworkFormat::Obj, "t.obj").unwrap();
+    // A cube's 12 edges, one `l a b` each: corners where three curves leave to one side.
+    let mut text = String::new();
+    let corners: Vec<[i32; 3]> = (0..8).map(|i| [i & 1, (i >> 1) & 1, (i >> 2) & 1]).collect();
+    for c in &corners {
+        text.push_str(&format!("v {} {} {}\n", c[0], c[1], c[2]));
+    }
+    for a in 0..8 {
+        for b in a + 1..8 {
+            if (0..3).map(|k| (corners[a][k] - corners[b][k]).abs()).sum::<i32>() == 1 {
+                text.push_str(&format!("l {} {}\n", a + 1, b + 1));
+            }
+        }
+    }
+    let s = surface(&parse(&text), &Options::default().with_vertices(3000)).unwrap();
+    assert_eq!(s.stats.cycles, 6);
+    assert!(curvenet::geom::mesh::bad_edge(&s.mesh.faces).is_none());
+    // Outward: the surface's vertex normals point away from the cube's centre on the whole.
+    let c = DVec3::splat(0.5);
+    let out: f64 = s.mesh.positions.iter().zip(&s.normals).map(|(p, n)| n.dot(*p - c)).sum();
+    assert!(out > 0.0);
+    // A lone square outline is a flat disk.
+    let s = surface(
+        &parse("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nl 1 2\nl 2 3\nl 3 4\nl 4 1\n"),
+        &Options::default().with_vertices(2000),
+    )
+    .unwrap();
+    assert_eq!(s.stats.cycles, 1);
+    assert!(s.mesh.positions.iter().all(|p| p.z.abs() < 1e-9));
+    // Two parallel circles, no normals, no boundary tags: the cylinder between them.
+    let cyl = example("cylinder").unwrap();
+    let mut bare = cyl.without_normals();
+    bare.curves.iter_mut().for_each(|c| c.boundary = false);
+    let s = surface(&bare, &Options::default().with_vertices(4000)).unwrap();
+    let truth = example_truth("cylinder").unwrap();
+    assert!(distance_to_truth(&s.mesh.positions, 0, &truth).max < 1e-3);
+}

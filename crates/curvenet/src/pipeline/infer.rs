@@ -29,6 +29,10 @@ use crate::topology::Patch;
 use crate::topology::{find_nodes, trim_dangling};
 use rayon::prelude::*;
 
+/// Strokes left out as duplicates before the overlap is reported as an error (each costs a
+/// node finding: a tangle of strokes is refused rather than taken apart one by one).
+pub const MAX_LEFT_OUT: usize = 16;
+
 /// A network with its normals inferred.
 #[derive(Clone, Debug)]
 pub struct Inferred {
@@ -77,7 +81,7 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
                 break g;
             }
             // A sketched stroke drawn twice (or along another): leave it out and say so.
-            Err(e) if is_overlap(&e).is_some_and(|c| !known[c]) && net.curves.len() > 1 => {
+            Err(e) if is_overlap(&e).is_some_and(|c| !known[c]) && net.curves.len() > 1 && left_out < MAX_LEFT_OUT => {
                 let c = is_overlap(&e).unwrap_or(0);
                 name_curves(&mut net);
                 warnings.push(Warning::new(format!("{e}: it was left out of the surface")));
@@ -92,6 +96,17 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     let orient = orient_graph(&mut g, &splines, &known)?;
     fill_gaps(&mut g, &known);
     warnings.extend(orient.warnings.iter().cloned());
+    let lone = close_lone_loops(&mut g, &known);
+    for &c in &lone {
+        warnings.push(
+            Warning::new(format!(
+                "{} is a closed curve that meets no other: it was taken as the border of a disk (of a tube with \
+                 a loop that faces it)",
+                g.labels[c]
+            ))
+            .curve(c),
+        );
+    }
     let mut report = InferredNormals {
         curves: orient.inferred_curves,
         nodes_from_tangents: orient.nodes_from_tangents,
@@ -109,6 +124,9 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     let splines = fit_splines(&trimmed);
     let (patches, _) = find_patches_open(&mut trimmed, &splines)?;
     let mut network = with_graph_normals(&net, &g, &known);
+    for &c in &lone {
+        network.curves[c].boundary = true;
+    }
     // The tolerance the nodes were found with, also after curves were left out (the default
     // follows the mean sample spacing).
     network.snap = Some(snap);
@@ -204,6 +222,28 @@ pub(crate) fn explain(e: crate::Error) -> crate::Error {
         },
         e => e,
     }
+}
+
+/// The inferred closed curves of `g` that meet no other curve (one loop segment on a node of
+/// their own), tagged as boundary in `g`: a lone loop bounds a disk (or a tube with a loop
+/// that faces it), where a network with normals would leave it out. Returns them.
+fn close_lone_loops(g: &mut Graph, known: &[bool]) -> Vec<usize> {
+    let mut valence = vec![0usize; g.nodes.len()];
+    for s in &g.segments {
+        valence[s.start] += 1;
+        valence[s.end] += 1;
+    }
+    let mut lone = Vec::new();
+    for s in 0..g.segments.len() {
+        let seg = &g.segments[s];
+        let c = seg.curve;
+        if !known[c] && !seg.boundary && seg.start == seg.end && valence[seg.start] == 2 && g.curves[c].closed {
+            g.segments[s].boundary = true;
+            g.curves[c].boundary = true;
+            lone.push(c);
+        }
+    }
+    lone
 }
 
 /// The curve of an overlap error of node finding (a curve that runs along another).

@@ -76,8 +76,9 @@ pub fn node_estimates(g: &Graph, splines: &[CurveSpline]) -> Vec<Option<(DVec3, 
 /// The normal of the plane that holds the unit directions `t` (\[CG\] §3.2: the curves at a
 /// node lie in its tangent plane): for two directions their cross product, for more the
 /// direction of least scatter (the smallest eigenvector of `Σ t tᵀ`, independent of their
-/// order), with the largest sine between two of them as its confidence. `None` below
-/// [`MIN_NODE_SINE`].
+/// order) — or, at a corner where they leave to one side and no plane holds them (a cube's
+/// corner), the opposite of their sum — with the largest sine between two of them as its
+/// confidence. `None` below [`MIN_NODE_SINE`].
 pub fn tangent_plane_normal(t: &[DVec3]) -> Option<(DVec3, f64)> {
     let mut best = (0.0, DVec3::ZERO);
     for i in 0..t.len() {
@@ -91,8 +92,13 @@ pub fn tangent_plane_normal(t: &[DVec3]) -> Option<(DVec3, f64)> {
     if best.0 < MIN_NODE_SINE {
         return None;
     }
+    let sum: DVec3 = t.iter().sum();
     let n = if t.len() == 2 {
         best.1.normalize_or_zero()
+    } else if t.len() == 3 && (0..3).all(|i| t[i].dot(t[(i + 1) % 3]) < 0.5) && sum.length() > 1.0 && !planar(t) {
+        // A corner (three curves leaving along the edges of a cube, 60° or more apart, to one
+        // side): no plane holds them; the normal is the direction they leave away from.
+        -sum.normalize()
     } else {
         let n = crate::geom::smallest_eigenvector(crate::geom::scatter(t.iter().copied(), DVec3::ZERO));
         if n.dot(best.1) < 0.0 {
@@ -102,6 +108,13 @@ pub fn tangent_plane_normal(t: &[DVec3]) -> Option<(DVec3, f64)> {
         }
     };
     (n != DVec3::ZERO).then_some((n, best.0))
+}
+
+/// The unit directions `t` lie near one plane: every one within about 25° of the plane of least
+/// scatter.
+fn planar(t: &[DVec3]) -> bool {
+    let n = crate::geom::smallest_eigenvector(crate::geom::scatter(t.iter().copied(), DVec3::ZERO));
+    t.iter().all(|d| d.dot(n).abs() < 0.42)
 }
 
 /// Unit tangents of split curve `c` of `g` at its samples (from its spline).

@@ -119,6 +119,10 @@ pub(super) struct Hit {
 
 type Cell = (i64, i64, i64);
 
+/// Candidate pairs of edges (within the tolerance of one grid cell) allowed per edge before the
+/// network counts as too dense to find its nodes ([`find_contacts`]).
+pub(super) const MAX_PAIRS_PER_EDGE: usize = 2000;
+
 fn cell_of(p: DVec3, h: f64) -> Cell {
     ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64)
 }
@@ -180,18 +184,35 @@ impl EdgeHash {
 /// (and that are not neighbours on one curve), their closest points when they are within
 /// `snap` of each other. Contacts of a curve with itself within `4 snap` along it (a stretch of
 /// dense samples) are not contacts. Sorted by curves, edges and position (deterministic).
-pub(super) fn find_contacts(lines: &Polylines, snap: f64) -> Vec<Hit> {
+///
+/// Errors ([`Error::Input`]): more candidate pairs than [`MAX_PAIRS_PER_EDGE`] per edge (plus
+/// a million): curves so dense within the tolerance (a hairball, an edge soup of random
+/// segments) that their meetings cannot be told apart — refused before the pairs fill memory.
+pub(super) fn find_contacts(lines: &Polylines, snap: f64) -> crate::error::Result<Vec<Hit>> {
     let curves = lines.curves;
     let EdgeHash { edges, boxes, grid } = EdgeHash::new(lines, snap);
     // Candidate pairs: edges that share a cell and whose inflated boxes overlap (once each).
     let mut pairs: Vec<(u32, u32)> = Vec::new();
+    let limit = MAX_PAIRS_PER_EDGE * edges.len() + 1_000_000;
     for list in grid.values() {
+        // Pairs this cell adds at most: refuse before allocating them.
+        if pairs.len() + list.len() * list.len().saturating_sub(1) / 2 > limit {
+            let (c, _) = edges[list[0] as usize];
+            return Err(crate::error::Error::input(format!(
+                "{} and {} other curve pieces crowd within the snapping tolerance ({snap:.3e}) of one place: the \
+                 curves are too dense there to tell their meetings apart (a tangle of strokes or random segments); \
+                 give a smaller `snap` or clean the curves",
+                lines.labels[c as usize],
+                list.len() - 1
+            ))
+            .curve(c as usize));
+        }
         for (i, &ka) in list.iter().enumerate() {
             for &kb in &list[i + 1..] {
                 let (ba, bb) = (&boxes[ka as usize], &boxes[kb as usize]);
                 let lo = ba.min.max(bb.min);
                 let hi = ba.max.min(bb.max);
-                if lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z {
+                if lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z && !same_stretch(lines, &edges, ka, kb, snap) {
                     pairs.push((ka.min(kb), ka.max(kb)));
                 }
             }
@@ -231,7 +252,23 @@ pub(super) fn find_contacts(lines: &Polylines, snap: f64) -> Vec<Hit> {
             .cmp(&(y.a.curve, y.a.edge, y.b.curve, y.b.edge))
             .then(x.a.s.total_cmp(&y.a.s))
     });
-    hits
+    Ok(hits)
+}
+
+/// Edges `ka` and `kb` of one curve whose points are all within `4 snap` of each other along
+/// it: any contact between them is the same stretch of curve (dense samples within the
+/// tolerance, see [`find_contacts`]), so the pair is not even a candidate — on densely sampled
+/// curves almost every pair in a cell is such a pair.
+fn same_stretch(lines: &Polylines, edges: &[(u32, u32)], ka: u32, kb: u32, snap: f64) -> bool {
+    let ((ca, ea), (cb, eb)) = (edges[ka as usize], edges[kb as usize]);
+    if ca != cb {
+        return false;
+    }
+    let (c, arcs) = (ca as usize, &lines.arcs[ca as usize]);
+    let (ea, eb) = (ea as usize, eb as usize);
+    let far = lines.along(c, arcs[ea], arcs[eb + 1]).max(lines.along(c, arcs[ea + 1], arcs[eb]));
+    let far = far.max(lines.along(c, arcs[ea], arcs[eb])).max(lines.along(c, arcs[ea + 1], arcs[eb + 1]));
+    far <= 4.0 * snap
 }
 
 /// Groups the contacts `hits` into meetings (one node each): contacts whose midpoints are

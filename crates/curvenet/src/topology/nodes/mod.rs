@@ -134,7 +134,7 @@ pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
     let labels: Vec<String> = (0..curves.len()).map(|i| curve_label(curves, i)).collect();
     let warnings = Vec::new();
     let lines = Polylines::new(curves, &labels);
-    let hits = find_contacts(&lines, snap);
+    let hits = find_contacts(&lines, snap)?;
     let clusters = cluster_contacts(&lines, &hits, snap);
     let (mut nodes, mut on_curve) = meeting_nodes(&lines, &hits, &clusters, snap)?;
     add_end_nodes(&lines, &mut nodes, &mut on_curve, snap);

@@ -162,8 +162,9 @@ pub(super) fn segments_of(split: &[SplitCurve], labels: &[String]) -> Result<Vec
     let mut segments = Vec::new();
     for (c, sc) in split.iter().enumerate() {
         let m = sc.points.len();
+        let tiny = 1e-12 * total_scale(&sc.points);
         for i in 1..m {
-            if sc.points[i].distance(sc.points[i - 1]) <= 1e-12 * total_scale(&sc.points) {
+            if sc.points[i].distance(sc.points[i - 1]) <= tiny {
                 return Err(Error::input(format!(
                     "{}: two nodes fall on the same point {} (crossings closer than the sampling); resample the curve more finely or lower `snap`",
                     labels[c],

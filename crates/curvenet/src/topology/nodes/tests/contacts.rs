@@ -37,7 +37,7 @@ fn two_crossing_edges_have_one_contact() {
     let curves = [line(&[[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]), line(&[[0.3, -1.0, 0.0], [0.3, 1.0, 0.0]])];
     let names = labels(2);
     let lines = Polylines::new(&curves, &names);
-    let hits = find_contacts(&lines, 0.01);
+    let hits = find_contacts(&lines, 0.01).unwrap();
     assert_eq!(hits.len(), 1);
     let h = &hits[0];
     assert_eq!((h.a.curve, h.a.edge, h.b.curve, h.b.edge), (0, 0, 1, 0));
@@ -56,7 +56,7 @@ fn a_crossing_at_a_shared_sample_is_one_cluster_of_four_contacts() {
     ];
     let names = labels(2);
     let lines = Polylines::new(&curves, &names);
-    let hits = find_contacts(&lines, 0.01);
+    let hits = find_contacts(&lines, 0.01).unwrap();
     let pairs: Vec<(usize, usize)> = hits.iter().map(|h| (h.a.edge, h.b.edge)).collect();
     assert_eq!(pairs, vec![(0, 0), (0, 1), (1, 0), (1, 1)]);
     assert!(hits.iter().all(|h| h.mid.length() < 1e-12));
@@ -73,7 +73,44 @@ fn two_crossings_far_apart_are_two_clusters() {
     ];
     let names = labels(2);
     let lines = Polylines::new(&curves, &names);
-    let hits = find_contacts(&lines, 0.01);
+    let hits = find_contacts(&lines, 0.01).unwrap();
     assert_eq!(hits.len(), 2);
     assert_eq!(cluster_contacts(&lines, &hits, 0.01), vec![vec![0], vec![1]]);
+}
+
+#[test]
+fn a_tangle_of_long_random_segments_is_refused_not_enumerated() {
+    // 3000 segments across the unit cube, all within a tolerance of 0.3 of each other's cells.
+    let mut rng = crate::network::Rng::new(7);
+    let curves: Vec<crate::Curve> = (0..3000)
+        .map(|_| crate::Curve {
+            points: vec![
+                DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()),
+                DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()),
+            ],
+            ..Default::default()
+        })
+        .collect();
+    let labels: Vec<String> = (0..curves.len()).map(|i| format!("curve {i}")).collect();
+    let lines = Polylines::new(&curves, &labels);
+    let e = find_contacts(&lines, 0.3).map(|h| h.len()).unwrap_err();
+    assert!(e.to_string().contains("too dense"), "{e}");
+}
+
+#[test]
+fn a_densely_sampled_circle_has_no_contacts_with_itself() {
+    let n = 20_000;
+    let curves = vec![crate::Curve {
+        points: (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                DVec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .collect(),
+        closed: true,
+        ..Default::default()
+    }];
+    let labels = vec!["circle".to_string()];
+    let lines = Polylines::new(&curves, &labels);
+    assert!(find_contacts(&lines, 3e-3).unwrap().is_empty());
 }

@@ -21,7 +21,7 @@ fn a_crossing_is_one_passage_per_curve_and_one_node() {
     ];
     let names = labels(2);
     let lines = Polylines::new(&curves, &names);
-    let hits = find_contacts(&lines, 0.01);
+    let hits = find_contacts(&lines, 0.01).unwrap();
     let clusters = cluster_contacts(&lines, &hits, 0.01);
     let p = passages(&lines, &hits, &clusters[0], 0.01).unwrap();
     assert_eq!(p.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>(), vec![(0, 1.0), (1, 1.0)]);
@@ -44,7 +44,7 @@ fn parallel_curves_within_the_tolerance_overlap() {
     let curves = [line(&a, DVec3::Z), line(&b, DVec3::Z)];
     let names = labels(2);
     let lines = Polylines::new(&curves, &names);
-    let hits = find_contacts(&lines, 0.01);
+    let hits = find_contacts(&lines, 0.01).unwrap();
     let clusters = cluster_contacts(&lines, &hits, 0.01);
     let Err(e) = meeting_nodes(&lines, &hits, &clusters, 0.01) else { panic!("accepted") };
     assert!(e.to_string().contains("runs within the snapping tolerance"), "{e}");
@@ -58,7 +58,7 @@ fn normals_more_than_90_degrees_apart_are_an_orientation_error() {
     ];
     let names = labels(2);
     let lines = Polylines::new(&curves, &names);
-    let hits = find_contacts(&lines, 0.01);
+    let hits = find_contacts(&lines, 0.01).unwrap();
     let p = passages(&lines, &hits, &cluster_contacts(&lines, &hits, 0.01)[0], 0.01).unwrap();
     let Err(e) = meeting_node(&lines, &p) else { panic!("accepted") };
     assert!(e.to_string().starts_with("curve 0 and curve 1 meet at"), "{e}");
