@@ -2,8 +2,9 @@
 // playwright-core): loads the page, which surfaces the sphere example in WebAssembly, waits
 // for the surface, checks the vertex count on the page against the command-line tool's count
 // for the same options, checks that the canvas shows a red (positive curvature) surface, turns
-// a curve's normals on the cylinder and checks the re-solve, and saves screenshots in
-// viewer/test/out/.
+// a curve's normals on the cylinder and checks the re-solve, loads a 3D sketch without normals
+// (OBJ edge soup) as a file and checks its vertex count against the CLI's, and saves
+// screenshots in viewer/test/out/.
 import { chromium } from 'playwright-core';
 import http from 'node:http';
 import fs from 'node:fs';
@@ -85,6 +86,19 @@ try {
   await page.waitForFunction((b) => document.getElementById('stats').textContent !== b, before, { timeout: 60000 });
   console.log(`after turning curve 0 by 30°: ${await page.textContent('#stats')}`);
   await page.screenshot({ path: path.join(out, 'cylinder-turned.png') });
+
+  // A 3D sketch without normals (an OBJ edge soup) loaded as a file: surfaced with inferred
+  // normals, as the command line does.
+  const sketch = path.join(repo, 'data', 'sketches', 'teapot.obj');
+  execFileSync(cli, ['surface', sketch, '-o', path.join(tmp, 't.ply'), '--fast', '--vertices', '10000', '--stats', path.join(tmp, 't.json'), '-q'], { stdio: ['ignore', 'ignore', 'pipe'] });
+  const sketchVertices = JSON.parse(fs.readFileSync(path.join(tmp, 't.json'), 'utf8')).vertices;
+  const beforeSketch = await page.textContent('#stats');
+  await page.setInputFiles('#file', sketch);
+  await page.waitForFunction((b) => document.getElementById('stats').textContent !== b && +document.getElementById('stats').dataset.vertices > 0, beforeSketch, { timeout: 120000 });
+  const sketchShown = +(await page.getAttribute('#stats', 'data-vertices'));
+  console.log(`teapot sketch (no normals): ${await page.textContent('#stats')}`);
+  if (sketchShown !== sketchVertices) fail(`the page reports ${sketchShown} vertices for the sketch, the CLI ${sketchVertices}`);
+  await page.screenshot({ path: path.join(out, 'teapot-sketch.png') });
   if (errors.length) fail(`errors in the page: ${errors.join('; ')}`);
   console.log('viewer e2e: ok');
 } finally {
