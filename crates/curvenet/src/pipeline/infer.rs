@@ -130,7 +130,10 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     // The tolerance the nodes were found with, also after curves were left out (the default
     // follows the mean sample spacing).
     network.snap = Some(snap);
-    for (curves, outer) in flat_components(&trimmed, &patches, &known) {
+    // A curve that was trimmed (a dangling end) is not tagged: a boundary curve is never cut back.
+    let count = |g: &Graph, c: usize| g.segments.iter().filter(|s| s.curve == c).count();
+    let whole: Vec<bool> = (0..g.curves.len()).map(|c| known[c] || count(&g, c) != count(&trimmed, c)).collect();
+    for (curves, outer) in flat_components(&trimmed, &patches, &whole) {
         let names: Vec<&str> = curves.iter().take(6).map(|&c| trimmed.labels[c].as_str()).collect();
         warnings.push(
             Warning::new(format!(
@@ -153,10 +156,10 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
 /// A component of `g` whose `patches` enclose (nearly) no volume — a loop of curves, or a
 /// planar-like network drawn without its border tagged, whose faces double-cover one sheet
 /// (each cycle seen from both sides) — is an open surface: its largest face is the outside.
-/// Returns, per such component, the curves to tag as boundary (the inferred curves all of
-/// whose segments lie on that face) and the face. The test: the volume enclosed by the faces
+/// Returns, per such component, the curves to tag as boundary (those not `keep` all of whose
+/// segments lie on that face, when they make up the whole face) and the face. The test: the volume enclosed by the faces
 /// (fans from their centres) below 5% of that of a sphere of the same area.
-fn flat_components(g: &Graph, patches: &[Patch], known: &[bool]) -> Vec<(Vec<usize>, usize)> {
+fn flat_components(g: &Graph, patches: &[Patch], keep: &[bool]) -> Vec<(Vec<usize>, usize)> {
     let comps = g.node_components();
     let mut by_comp: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
     for (i, p) in patches.iter().enumerate() {
@@ -199,10 +202,12 @@ fn flat_components(g: &Graph, patches: &[Patch], known: &[bool]) -> Vec<(Vec<usi
             .collect::<std::collections::BTreeSet<_>>()
             .into_iter()
             .filter(|&c| {
-                !known[c] && g.segments.iter().enumerate().all(|(s, seg)| seg.curve != c || on_outer.contains(&s))
+                !keep[c] && g.segments.iter().enumerate().all(|(s, seg)| seg.curve != c || on_outer.contains(&s))
             })
             .collect();
-        if !curves.is_empty() {
+        // The whole border or nothing: a border tagged in part does not close.
+        let covered = on_outer.iter().all(|&s| curves.contains(&g.segments[s].curve));
+        if !curves.is_empty() && covered {
             out.push((curves, outer));
         }
     }
