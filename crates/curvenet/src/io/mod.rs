@@ -61,7 +61,9 @@ pub fn read_network(path: &Path) -> Result<Network> {
 }
 
 /// Parses a curve network from text; `source` names it in error messages.
+/// A UTF-8 byte-order mark at the start (as some Windows editors write) is skipped.
 pub fn parse_network(text: &str, format: NetworkFormat, source: &str) -> Result<Network> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     match format {
         NetworkFormat::Json => json::parse(text, source),
         NetworkFormat::Obj => obj::parse(text, source),

@@ -46,9 +46,17 @@ impl Curve {
 }
 
 /// Human-readable name of curve `index` for messages: `curve 3 ("equator")`.
+/// Control characters and escape sequences in a name are shown escaped (`\u{1b}`), so that a
+/// file's text never drives the terminal a message is printed on.
 pub fn curve_label(curves: &[Curve], index: usize) -> String {
     match curves.get(index).and_then(|c| c.name.as_deref()) {
-        Some(name) => format!("curve {index} (\"{name}\")"),
+        Some(name) => {
+            let shown: String = name
+                .chars()
+                .map(|ch| if ch.is_control() { ch.escape_unicode().to_string() } else { ch.to_string() })
+                .collect();
+            format!("curve {index} (\"{shown}\")")
+        }
         None => format!("curve {index}"),
     }
 }

@@ -40,3 +40,13 @@ fn obj_and_net_refuse_networks_they_cannot_hold() {
     write_network(&dir.join("m.json"), &net).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_byte_order_mark_is_skipped_and_control_characters_in_names_are_escaped() {
+    let text = "\u{feff}{\"curves\": [{\"name\": \"a\\u001b[31mred\", \"points\": [[0,0,0],[1,0,0]]}]}";
+    let net = parse_network(text, NetworkFormat::Json, "bom.json").unwrap();
+    let label = crate::network::curve_label(&net.curves, 0);
+    assert!(!label.chars().any(char::is_control), "{label}");
+    assert!(label.contains("\\u{1b}[31mred"), "{label}");
+    assert!(parse_network("\u{feff}v 0 0 0\nv 1 0 0\nl 1 2\n", NetworkFormat::Obj, "bom.obj").is_ok());
+}
