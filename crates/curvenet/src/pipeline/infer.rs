@@ -131,8 +131,13 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     // follows the mean sample spacing).
     network.snap = Some(snap);
     // A curve that was trimmed (a dangling end) is not tagged: a boundary curve is never cut back.
-    let count = |g: &Graph, c: usize| g.segments.iter().filter(|s| s.curve == c).count();
-    let whole: Vec<bool> = (0..g.curves.len()).map(|c| known[c] || count(&g, c) != count(&trimmed, c)).collect();
+    let count = |g: &Graph| {
+        let mut n = vec![0usize; g.curves.len()];
+        g.segments.iter().for_each(|s| n[s.curve] += 1);
+        n
+    };
+    let (before, after) = (count(&g), count(&trimmed));
+    let whole: Vec<bool> = (0..g.curves.len()).map(|c| known[c] || before[c] != after[c]).collect();
     for (curves, outer) in flat_components(&trimmed, &patches, &whole) {
         let names: Vec<&str> = curves.iter().take(6).map(|&c| trimmed.labels[c].as_str()).collect();
         warnings.push(

@@ -249,16 +249,20 @@ fn orient(
     }
     // Components without a given normal start at their most confident node; one without any
     // estimate (loops that cross nothing, single strokes) at a guess from its shape.
-    for root in 0..n {
-        if comps[root] != root || seeded[root] {
+    let curves_of = curves_by_component(g, &comps);
+    let tubes = tube_loops(g, &curves_of, estimates);
+    for (root, members) in members_by_component(&comps) {
+        if seeded[root] {
             continue;
         }
-        let members: Vec<usize> = (0..n).filter(|&v| comps[v] == root).collect();
         let best =
             members.iter().filter_map(|&v| estimates[v].map(|(e, c)| (v, e, c))).max_by(|a, b| a.2.total_cmp(&b.2));
         let (v, normal) = match best {
             Some((v, e, _)) => (v, e),
-            None => (root, shape_guess(g, tangents, &members, &adjacent)),
+            None => {
+                let curves = curves_of.get(&root).map_or(&[][..], |c| &c[..]);
+                (root, shape_guess(g, tangents, &members, curves, &tubes, &adjacent))
+            }
         };
         g.nodes[v].normal = normal;
         done[v] = true;
@@ -311,6 +315,29 @@ fn orient(
     Ok(())
 }
 
+/// The nodes of each component (by its root, the component's smallest node), in one pass.
+fn members_by_component(comps: &[usize]) -> std::collections::BTreeMap<usize, Vec<usize>> {
+    let mut out: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
+    for (v, &root) in comps.iter().enumerate() {
+        out.entry(root).or_default().push(v);
+    }
+    out
+}
+
+/// The curves of each component (by its root): those with a node in it, in one pass.
+fn curves_by_component(g: &Graph, comps: &[usize]) -> std::collections::BTreeMap<usize, Vec<usize>> {
+    let mut out: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
+    for (c, sc) in g.curves.iter().enumerate() {
+        let mut roots: Vec<usize> = sc.nodes.iter().map(|&(_, v)| comps[v]).collect();
+        roots.sort_unstable();
+        roots.dedup();
+        for r in roots {
+            out.entry(r).or_default().push(c);
+        }
+    }
+    out
+}
+
 /// A total order on confidences for the priority queue.
 #[derive(Clone, Copy, PartialEq)]
 struct Key(f64);
@@ -359,7 +386,6 @@ fn contradictions(g: &Graph, tangents: &[Vec<DVec3>], fixed: &[bool]) -> Vec<usi
 /// their sum leans along most (a saddle over the xy-plane faces +z).
 fn turn_outward(g: &mut Graph, known: &[bool], fixed: &[bool], report: &mut OrientReport) {
     let comps = g.node_components();
-    let n = g.nodes.len();
     let mut directions = Vec::new();
     for x in -1..=1 {
         for y in -1..=1 {
@@ -370,13 +396,12 @@ fn turn_outward(g: &mut Graph, known: &[bool], fixed: &[bool], report: &mut Orie
             }
         }
     }
-    for root in 0..n {
-        if comps[root] != root || (0..n).any(|v| comps[v] == root && fixed[v]) {
+    let mut curves_of = curves_by_component(g, &comps);
+    for (root, members) in members_by_component(&comps) {
+        if members.iter().any(|&v| fixed[v]) {
             continue;
         }
-        // The component's curves: those with a node in it.
-        let curves: Vec<usize> =
-            (0..g.curves.len()).filter(|&c| g.curves[c].nodes.iter().any(|&(_, v)| comps[v] == root)).collect();
+        let curves = curves_of.remove(&root).unwrap_or_default();
         let mut vote = 0.0;
         for u in &directions {
             let best = curves
@@ -395,7 +420,7 @@ fn turn_outward(g: &mut Graph, known: &[bool], fixed: &[bool], report: &mut Orie
             vote = sum[axis];
         }
         if vote < 0.0 {
-            for v in (0..n).filter(|&v| comps[v] == root) {
+            for &v in &members {
                 g.nodes[v].normal = -g.nodes[v].normal;
             }
             for &c in &curves {
@@ -408,26 +433,31 @@ fn turn_outward(g: &mut Graph, known: &[bool], fixed: &[bool], report: &mut Orie
     }
 }
 
-/// A normal for a component whose nodes have no tangent plane (loops that cross nothing,
+/// A normal for a component (its nodes `members`, its curves `curves`) whose nodes have no tangent plane (loops that cross nothing,
 /// curves that only touch end to end): for the loop of a tube (another loop of the network
 /// faces it) the direction away from its centre, else the normal of the plane its points
 /// span (least squares), else any direction across the curve.
-fn shape_guess(g: &Graph, tangents: &[Vec<DVec3>], members: &[usize], adjacent: &[Vec<usize>]) -> DVec3 {
+fn shape_guess(
+    g: &Graph,
+    tangents: &[Vec<DVec3>],
+    members: &[usize],
+    curves: &[usize],
+    tubes: &std::collections::HashSet<usize>,
+    adjacent: &[Vec<usize>],
+) -> DVec3 {
     let v = members[0];
     let Some(&s) = adjacent[v].first() else { return DVec3::Z };
     let c = g.segments[s].curve;
     let pts = &g.curves[c].points;
     let t = tangents[c][g.segments[s].first % pts.len()];
-    // The points of the whole component: a loop may be made of several open curves.
-    let curves: Vec<usize> =
-        (0..g.curves.len()).filter(|&k| g.curves[k].nodes.iter().any(|&(_, n)| members.contains(&n))).collect();
+    // The points of the whole component (`curves`): a loop may be made of several open curves.
     let all: Vec<DVec3> = curves.iter().flat_map(|&k| g.curves[k].points.iter().copied()).collect();
     let centre = all.iter().sum::<DVec3>() / all.len().max(1) as f64;
     let across = |d: DVec3| (d - t * d.dot(t)).normalize_or_zero();
     let looped = g.curves[c].closed || curves.iter().all(|&k| !g.curves[k].closed);
     if looped && all.len() >= 3 {
         let plane = crate::geom::smallest_eigenvector(crate::geom::scatter(all.iter().copied(), centre));
-        if faces_another_loop(g, c, centre, plane) {
+        if tubes.contains(&c) {
             let out = across(g.nodes[v].position - centre);
             if out != DVec3::ZERO {
                 return out;
@@ -446,19 +476,52 @@ fn shape_guess(g: &Graph, tangents: &[Vec<DVec3>], members: &[usize], adjacent: 
     }
 }
 
-/// Another closed curve of `g` that crosses nothing faces loop `c` (centre `centre`, plane
-/// normal `plane`): both planes within 30° of perpendicular to the line between the centres.
-fn faces_another_loop(g: &Graph, c: usize, centre: DVec3, plane: DVec3) -> bool {
-    let cos30 = 0.866;
-    g.curves.iter().enumerate().any(|(o, other)| {
-        if o == c || !other.closed || other.nodes.len() != 1 {
-            return false;
+/// The loops that cross nothing (a component of one closed curve without a tangent plane at
+/// its node) that pair into tubes, as the cycles will pair them (`cycles::lone`): both planes
+/// within 45° of perpendicular to the line between their centres, nearest pairs first, each
+/// loop in one pair at most. Two parallel circles are a cylinder's borders; a loop left alone
+/// bounds a disk.
+fn tube_loops(
+    g: &Graph,
+    curves_of: &std::collections::BTreeMap<usize, Vec<usize>>,
+    estimates: &[Option<(DVec3, f64)>],
+) -> std::collections::HashSet<usize> {
+    let loops: Vec<(usize, DVec3, DVec3)> = curves_of
+        .values()
+        .filter(|cs| cs.len() == 1)
+        .map(|cs| cs[0])
+        .filter(|&c| {
+            let sc = &g.curves[c];
+            sc.closed && sc.nodes.len() == 1 && estimates[sc.nodes[0].1].is_none()
+        })
+        .map(|c| {
+            let p = &g.curves[c].points;
+            (c, p.iter().sum::<DVec3>() / p.len() as f64, crate::geom::polygon_vector_area(p).normalize_or_zero())
+        })
+        .collect();
+    let cos45 = std::f64::consts::FRAC_1_SQRT_2;
+    let mut pairs = Vec::new();
+    for i in 0..loops.len() {
+        for j in i + 1..loops.len() {
+            let d = loops[j].1 - loops[i].1;
+            let dh = d.normalize_or_zero();
+            if dh != DVec3::ZERO && loops[i].2.dot(dh).abs() >= cos45 && loops[j].2.dot(dh).abs() >= cos45 {
+                pairs.push((d.length(), i, j));
+            }
         }
-        let oc = other.points.iter().sum::<DVec3>() / other.points.len() as f64;
-        let op = crate::geom::polygon_vector_area(&other.points).normalize_or_zero();
-        let axis = (oc - centre).normalize_or_zero();
-        axis != DVec3::ZERO && plane.dot(axis).abs() > cos30 && op.dot(axis).abs() > cos30
-    })
+    }
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut used = vec![false; loops.len()];
+    let mut out = std::collections::HashSet::new();
+    for (_, i, j) in pairs {
+        if !used[i] && !used[j] {
+            used[i] = true;
+            used[j] = true;
+            out.insert(loops[i].0);
+            out.insert(loops[j].0);
+        }
+    }
+    out
 }
 
 /// Step 3: the sample normals of the curves that are not `known`, segment by segment — the
