@@ -162,8 +162,9 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
 /// planar-like network drawn without its border tagged, whose faces double-cover one sheet
 /// (each cycle seen from both sides) — is an open surface: its largest face is the outside.
 /// Returns, per such component, the curves to tag as boundary (those not `keep` all of whose
-/// segments lie on that face, when they make up the whole face) and the face. The test: the volume enclosed by the faces
-/// (fans from their centres) below 5% of that of a sphere of the same area.
+/// segments lie on that face, when they make up the whole face) and the face. The test: the
+/// volume enclosed by the faces (fans from their centres) below 5% of that of a sphere of the
+/// same area.
 fn flat_components(g: &Graph, patches: &[Patch], keep: &[bool]) -> Vec<(Vec<usize>, usize)> {
     let comps = g.node_components();
     let mut by_comp: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
@@ -219,8 +220,8 @@ fn flat_components(g: &Graph, patches: &[Patch], keep: &[bool]) -> Vec<(Vec<usiz
     out
 }
 
-/// `e` from surfacing a network whose normals were (partly) inferred: input and topology errors
-/// about normals say that these normals were inferred, not given.
+/// `e` from surfacing a network whose normals were (partly) inferred: an input error about
+/// normals says that these normals were inferred, not given.
 pub(crate) fn explain(e: crate::Error) -> crate::Error {
     match e {
         crate::Error::Input { message, at } if message.contains("normal") => crate::Error::Input {
