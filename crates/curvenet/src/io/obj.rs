@@ -233,10 +233,13 @@ pub(super) fn chain_edges(edges: &[[usize; 2]]) -> Vec<(Vec<usize>, bool)> {
 }
 
 pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
-    if !net.has_all_normals() {
-        return write_without_normals(w, net);
+    // Without normals (every curve's unknown): `v` and `l` only; read back, they are inferred.
+    let normals = net.has_all_normals();
+    if normals {
+        writeln!(w, "# curve network written by curvenet: v/vn pairs by index, one l per curve")?;
+    } else {
+        writeln!(w, "# curve network written by curvenet: v and one l per curve, no normals (inferred when read)")?;
     }
-    writeln!(w, "# curve network written by curvenet: v/vn pairs by index, one l per curve")?;
     let mut base = 1usize;
     for (ci, c) in net.curves.iter().enumerate() {
         let name = c.name.clone().unwrap_or_else(|| format!("curve{ci}"));
@@ -248,35 +251,10 @@ pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
         for p in &c.points {
             writeln!(w, "v {:?} {:?} {:?}", p.x, p.y, p.z)?;
         }
-        for n in &c.normals {
-            writeln!(w, "vn {:?} {:?} {:?}", n.x, n.y, n.z)?;
-        }
-        write!(w, "l")?;
-        for i in 0..c.points.len() {
-            write!(w, " {}", base + i)?;
-        }
-        if c.closed {
-            write!(w, " {base}")?;
-        }
-        writeln!(w)?;
-        base += c.points.len();
-    }
-    Ok(())
-}
-
-/// A network with curves without normals: `v` and `l` only (no `vn`: every normal unknown).
-fn write_without_normals(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
-    writeln!(w, "# curve network written by curvenet: v and one l per curve, no normals (inferred when read)")?;
-    let mut base = 1usize;
-    for (ci, c) in net.curves.iter().enumerate() {
-        let name = c.name.clone().unwrap_or_else(|| format!("curve{ci}"));
-        writeln!(
-            w,
-            "{}",
-            if c.boundary { "g boundary".to_string() } else { format!("g {}", name.replace(char::is_whitespace, "_")) }
-        )?;
-        for p in &c.points {
-            writeln!(w, "v {:?} {:?} {:?}", p.x, p.y, p.z)?;
+        if normals {
+            for n in &c.normals {
+                writeln!(w, "vn {:?} {:?} {:?}", n.x, n.y, n.z)?;
+            }
         }
         write!(w, "l")?;
         for i in 0..c.points.len() {

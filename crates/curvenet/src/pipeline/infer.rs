@@ -372,17 +372,12 @@ fn with_graph_normals(net: &Network, g: &Graph, known: &[bool]) -> Network {
         if known[c] {
             continue;
         }
+        // Every input sample is in its split curve (a sample a node replaced keeps the node's
+        // normal), and `fill_gaps` left no zero normal there.
         curve.normals = vec![DVec3::ZERO; curve.points.len()];
         for (j, &o) in sc.origin.iter().enumerate() {
             if let Some(n) = curve.normals.get_mut(o) {
                 *n = sc.normals[j];
-            }
-        }
-        // A sample that a node replaced keeps the node's normal; any left without (none in
-        // practice) takes its neighbour's.
-        for i in 0..curve.normals.len() {
-            if curve.normals[i] == DVec3::ZERO {
-                curve.normals[i] = if i > 0 { curve.normals[i - 1] } else { DVec3::Z };
             }
         }
         across_chords(curve);
