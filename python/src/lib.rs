@@ -167,6 +167,8 @@ fn to_array(p: &[DVec3]) -> Array2<f64> {
 
 /// A curve as Python gives it: `(points, normals or None, closed, boundary)`.
 type CurveTuple<'py> = (Bound<'py, PyAny>, Option<Bound<'py, PyAny>>, bool, bool);
+/// A crease curve: `(points, normals, closed, boundary, normals_right or None)`.
+type CreaseTuple<'py> = (Bound<'py, PyAny>, Option<Bound<'py, PyAny>>, bool, bool, Option<Bound<'py, PyAny>>);
 
 /// `(message, curve, sample, node, patch)` of a warning.
 type WarningTuple = (String, Option<usize>, Option<usize>, Option<usize>, Option<usize>);
@@ -184,25 +186,45 @@ struct PyNetwork {
 #[pymethods]
 impl PyNetwork {
     /// `curves`: a list of `(points (n,3) float64, normals (n,3) float64 or None, closed,
-    /// boundary)`; `None` normals are unknown (inferred).
+    /// boundary)`; `None` normals are unknown (inferred). A crease curve has a fifth element,
+    /// `normals_right` (n,3) (the surface's normal on the right of the curve; `None`: smooth).
     #[new]
     #[pyo3(signature = (curves, snap=None))]
-    fn new(curves: Vec<CurveTuple<'_>>, snap: Option<f64>) -> PyResult<Self> {
+    fn new(curves: Vec<Bound<'_, PyAny>>, snap: Option<f64>) -> PyResult<Self> {
         let mut out = Vec::with_capacity(curves.len());
-        for (i, (p, n, closed, boundary)) in curves.iter().enumerate() {
-            let (pn, nn) = (format!("curve {i}: points"), format!("curve {i}: normals"));
+        for (i, item) in curves.iter().enumerate() {
+            let (p, n, closed, boundary, r) = match item.extract::<CurveTuple<'_>>() {
+                Ok((p, n, c, b)) => (p, n, c, b, None),
+                Err(_) => item.extract::<CreaseTuple<'_>>().map_err(|_| {
+                    usage(format!(
+                        "curve {i}: expected (points, normals or None, closed, boundary[, normals_right or None])"
+                    ))
+                })?,
+            };
+            let (pn, nn, rn) =
+                (format!("curve {i}: points"), format!("curve {i}: normals"), format!("curve {i}: normals_right"));
+            let vectors = |name: &str, a: &Option<Bound<'_, PyAny>>| -> PyResult<Vec<DVec3>> {
+                match a {
+                    Some(a) => points(name, &array2(name, a, Some(3))?),
+                    None => Ok(Vec::new()),
+                }
+            };
             out.push(curvenet::Curve {
                 name: None,
-                points: points(&pn, &array2(&pn, p, Some(3))?)?,
-                normals: match n {
-                    Some(n) => points(&nn, &array2(&nn, n, Some(3))?)?,
-                    None => Vec::new(),
-                },
-                closed: *closed,
-                boundary: *boundary,
+                points: points(&pn, &array2(&pn, &p, Some(3))?)?,
+                normals: vectors(&nn, &n)?,
+                normals_right: vectors(&rn, &r)?,
+                closed,
+                boundary,
             });
         }
         Ok(PyNetwork { inner: curvenet::Network { curves: out, snap }, source: None })
+    }
+
+    /// Per curve, its crease normals `normals_right` (n,3), or `None` for a smooth curve.
+    #[getter]
+    fn normals_right<'py>(&self, py: Python<'py>) -> Vec<Option<Points<'py>>> {
+        self.inner.curves.iter().map(|c| c.is_crease().then(|| to_array(&c.normals_right).into_pyarray(py))).collect()
     }
 
     /// The curves as `(points, normals, closed, boundary)` tuples (copies; `normals` is `None`

@@ -75,7 +75,7 @@ fn json_of(net: &Network) -> Vec<u8> {
 }
 
 fn curve(points: Vec<DVec3>, normals: Vec<DVec3>, closed: bool, boundary: bool) -> Curve {
-    Curve { name: None, points, normals, closed, boundary }
+    Curve { name: None, points, normals, closed, boundary, ..Default::default() }
 }
 
 const TWO_SAMPLES: &str = r#"{"curves": [{"points": [[0,0,0],[1,0,0]], "normals": [[0,0,1],[0,0,1]]}]}"#;

@@ -86,7 +86,7 @@ fn sketches_without_normals_surface_through_their_strokes() {
 fn closed(n: usize, f: impl Fn(f64) -> DVec3, g: impl Fn(DVec3) -> DVec3, boundary: bool) -> curvenet::Curve {
     let points: Vec<DVec3> = (0..n).map(|k| f(std::f64::consts::TAU * k as f64 / n as f64)).collect();
     let normals = points.iter().map(|&p| g(p)).collect();
-    curvenet::Curve { name: None, points, normals, closed: true, boundary }
+    curvenet::Curve { name: None, points, normals, closed: true, boundary, ..Default::default() }
 }
 
 /// The network as an OBJ edge soup: vertices shared by position, one `l a b` per edge, the
@@ -167,7 +167,14 @@ fn ellipsoid_tori_and_cone_without_normals_as_json_and_edge_soup() {
             .map(|rr| DVec3::new(rr * ph.cos(), rr * ph.sin(), 2.0 - rr))
             .collect();
         let normals = points.iter().map(|&p| cone_normal(p)).collect();
-        cone.curves.push(curvenet::Curve { name: None, points, normals, closed: false, boundary: false });
+        cone.curves.push(curvenet::Curve {
+            name: None,
+            points,
+            normals,
+            closed: false,
+            boundary: false,
+            ..Default::default()
+        });
     }
     type Distance = Box<dyn Fn(DVec3) -> f64>;
     let cases: Vec<(&str, Network, Distance)> = vec![

@@ -6,7 +6,7 @@ use curvenet::{surface, Curve, Network, Options};
 
 fn polyline(name: &str, points: Vec<DVec3>, closed: bool, boundary: bool) -> Curve {
     let n = points.len();
-    Curve { name: Some(name.into()), points, normals: vec![DVec3::Z; n], closed, boundary }
+    Curve { name: Some(name.into()), points, normals: vec![DVec3::Z; n], closed, boundary, ..Default::default() }
 }
 
 fn line(name: &str, a: DVec3, b: DVec3, pieces: usize) -> Curve {

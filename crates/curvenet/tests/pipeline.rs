@@ -186,7 +186,14 @@ fn a_lone_boundary_loop_bounds_a_flat_disk() {
     let points: Vec<DVec3> =
         (0..n).map(|k| DVec3::new((TAU * k as f64 / n as f64).cos(), (TAU * k as f64 / n as f64).sin(), 0.5)).collect();
     let net = Network {
-        curves: vec![Curve { name: None, normals: vec![DVec3::Z; n], points, closed: true, boundary: true }],
+        curves: vec![Curve {
+            name: None,
+            normals: vec![DVec3::Z; n],
+            points,
+            closed: true,
+            boundary: true,
+            ..Default::default()
+        }],
         snap: None,
     };
     let (_, _, p) = topology(&net);

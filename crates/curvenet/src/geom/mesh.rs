@@ -29,6 +29,14 @@ pub struct Mesh {
     /// Patches whose planar projection folds over (\[CG\] §3.3): triangulated in the plane of
     /// their vector area or on a convex (elliptic) domain instead.
     pub fold_fallback: Vec<usize>,
+    /// The seam rows of a mesh cut open along creases (`topology::creases`, docs/design.md
+    /// §13), sorted by vertex: per copy of a crease vertex, `½ Σ |e| ν_e` over its open edges
+    /// `e` (`ν_e` the outward conormal of the side, across `e` and the copy's normal), and
+    /// `½ Σ |e| S ν_e` (`S ν` the normal's derivative across the seam, estimated from the
+    /// curves that leave it). Their one-sided Laplacian is no curvature, but its boundary term
+    /// is known: `(Ls V)_v ≈ −2 A_v H_v n_v − ½ Σ |e| ν_e`, `(Ls N)_v ≈ −½ Σ |e| S ν_e`, so the
+    /// propagation and the fit keep their rows with these targets. Empty otherwise.
+    pub seam_rows: Vec<(u32, [DVec3; 2])>,
     /// The Laplacian's sparsity pattern, computed on first use (the faces must not change
     /// afterwards).
     pub(crate) pattern: std::sync::OnceLock<std::sync::Arc<LaplacianPattern>>,
@@ -66,6 +74,16 @@ impl Mesh {
             }
         }
         parts
+    }
+
+    /// Per vertex: the fit leaves its row out — an open-boundary vertex that is not a seam
+    /// copy ([`Mesh::seam_rows`]).
+    pub fn fit_row_left_out(&self) -> Vec<bool> {
+        let mut out = self.on_boundary.clone();
+        for &(v, _) in &self.seam_rows {
+            out[v as usize] = false;
+        }
+        out
     }
 
     /// `true` for curve vertices, `#V` (the PLY `curve` flag).

@@ -29,6 +29,9 @@ struct JsonCurve {
     /// Absent (or `null`): unknown, inferred (docs/design.md §12).
     #[serde(default)]
     normals: Option<Vec<[f64; 3]>>,
+    /// A crease's second normal per sample (docs/design.md §13); absent: a smooth curve.
+    #[serde(default)]
+    normals_right: Option<Vec<[f64; 3]>>,
 }
 
 pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
@@ -49,6 +52,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
                 name: c.name,
                 points: c.points.iter().map(v).collect(),
                 normals: c.normals.iter().flatten().map(v).collect(),
+                normals_right: c.normals_right.iter().flatten().map(v).collect(),
                 closed: c.closed,
                 boundary: c.boundary,
             })
@@ -84,6 +88,11 @@ pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
             writeln!(w, "      ],")?;
             writeln!(w, "      \"normals\": [")?;
             write_points(w, &c.normals)?;
+        }
+        if c.is_crease() {
+            writeln!(w, "      ],")?;
+            writeln!(w, "      \"normals_right\": [")?;
+            write_points(w, &c.normals_right)?;
         }
         writeln!(w, "      ]")?;
         writeln!(w, "    }}{}", if ci + 1 < net.curves.len() { "," } else { "" })?;

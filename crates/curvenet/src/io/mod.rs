@@ -85,7 +85,7 @@ pub fn write_network(path: &Path, network: &Network) -> Result<()> {
 }
 
 /// Why `network` cannot be written in `format`: `.net` needs a normal at every sample; OBJ
-/// holds normals for every curve or for none.
+/// holds normals for every curve or for none; only JSON holds a crease's second normal.
 fn unwritable(format: NetworkFormat, network: &Network) -> Option<&'static str> {
     let some = network.curves.iter().any(|c| c.has_normals());
     match format {
@@ -96,6 +96,10 @@ fn unwritable(format: NetworkFormat, network: &Network) -> Option<&'static str> 
         NetworkFormat::Obj if some && !network.has_all_normals() => Some(
             "OBJ holds normals for every curve or for none, and some curves of this network have none; write \
              .json (or infer the missing normals first: curvenet normals)",
+        ),
+        NetworkFormat::Net | NetworkFormat::Obj if network.has_creases() => Some(
+            "this network has crease curves (two normals per sample, `normals_right`), which only the JSON \
+             format holds; write .json",
         ),
         _ => None,
     }

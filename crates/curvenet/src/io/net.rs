@@ -109,6 +109,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
             name: None,
             points: ids.iter().map(|&i| points[i]).collect(),
             normals: ids.iter().map(|&i| normals[i]).collect(),
+            normals_right: Vec::new(),
             closed,
             boundary,
         });

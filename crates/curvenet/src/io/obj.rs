@@ -124,6 +124,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
             name: p.name,
             points: ids.iter().map(|&i| v[i]).collect(),
             normals: ids.iter().map(|&i| vn[i]).collect(),
+            normals_right: Vec::new(),
             closed,
             boundary: p.boundary,
         });
@@ -168,6 +169,7 @@ fn chain_soup(lines: Vec<(Option<String>, bool, LineIndices)>, v: &[DVec3], sour
                 name,
                 points: ids.iter().map(|&i| v[i]).collect(),
                 normals: Vec::new(),
+                normals_right: Vec::new(),
                 closed,
                 boundary,
             });

@@ -24,7 +24,7 @@
 //! `max_iterations`, or — keeping the last good surface — when a triangle degenerates or the
 //! updates grow (divergence).
 
-use super::normal_control::fit_weights;
+use super::normal_control::{fit_weights, seam_normal_targets, seam_targets};
 use super::{check_finite, factor_on, known_rows, scatter, Energy, MethodResult};
 use crate::error::{Error, Result};
 use crate::geom::mesh::Mesh;
@@ -247,7 +247,8 @@ impl Iterated {
         let nc = mesh.num_curve;
         let o = &params.options;
         let mu = if o.normal_prior > 0.0 { (o.normal_prior * params.patch_size).powi(-4) } else { 0.0 };
-        let closed = !mesh.on_boundary.iter().any(|&b| b);
+        let left_out = mesh.fit_row_left_out();
+        let closed = !left_out.iter().any(|&b| b);
         // Hard constraints eliminate the curve vertices; soft ones keep every vertex unknown,
         // normals included: the curve normals are then pulled towards the input ones only,
         // with the same weight as the positions (sensor normals are noisy too).
@@ -255,7 +256,7 @@ impl Iterated {
         let (step, q) = timed(&mut t.operators, || {
             let ops = cotan_operators(mesh, Metric::Surface, vk);
             let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
-            let w = fit_weights(&mesh.on_boundary, &inv_m, params.energy);
+            let w = fit_weights(&left_out, &inv_m, params.energy);
             let step = Step { mesh, params, ops, inv_m, w, first, mu };
             let q = step.with_prox(product_lower(&step.ops.ls, &step.inv_m, &step.ops.ls, first));
             (step, q)
@@ -305,7 +306,8 @@ fn inner_steps(
         let clock = crate::solve::timing::Instant::now();
         // 2. Normals, pulled towards the current surface's.
         let prior = if inner == 0 { nk.clone() } else { vertex_normals(&mesh.faces, &v) };
-        let mut rhs = LeastSquares { a: &step.ops.ls, w: &step.inv_m, first }.rhs(None, &known_normals);
+        let seam = seam_normal_targets(mesh, &step.ops.ls, &prior);
+        let mut rhs = LeastSquares { a: &step.ops.ls, w: &step.inv_m, first }.rhs(seam.as_ref(), &known_normals);
         for k in first..n {
             let target = if k < nc { mesh.curve_normals[k] } else { prior[k] };
             for c in 0..3 {
@@ -332,6 +334,7 @@ fn inner_steps(
                 b[(k, c)] = s * normals[k][c];
             }
         }
+        seam_targets(mesh, &step.ops.mass, &normals, &mut h, &mut b);
         // 4. Fit, with the proximal pull (and the soft pull of the curve vertices).
         let mut rhs = LeastSquares { a: &step.ops.ls, w: &step.w, first }.rhs(Some(&b), &known);
         for k in first..n {

@@ -154,7 +154,7 @@ pub(crate) fn propagate(
     let energy = LeastSquares { a: &ops.ls, w: &inv_m, first: nc };
     let right_hand_sides = || {
         let known = known_rows(n, nc, &[&mesh.positions, &mesh.curve_normals]);
-        energy.rhs(None, &known)
+        energy.rhs(seam_propagation_targets(mesh).as_ref(), &known)
     };
     let (system, rhs) = match cached {
         Some(c) => (c, timed(&mut t.operators, right_hand_sides)),
@@ -215,10 +215,10 @@ pub fn normal_control(
 }
 
 /// The fit's row weights `w_v` (\[CG\] eq. 2; module docs, 3): `1/A_v` (area-weighted) or
-/// `1/A_v²` (as written), 0 on open-boundary rows.
-pub(crate) fn fit_weights(on_boundary: &[bool], inv_m: &[f64], energy: Energy) -> Vec<f64> {
+/// `1/A_v²` (as written), 0 on open-boundary rows (`left_out`, [`Mesh::fit_row_left_out`]).
+pub(crate) fn fit_weights(left_out: &[bool], inv_m: &[f64], energy: Energy) -> Vec<f64> {
     (0..inv_m.len())
-        .map(|k| match (on_boundary[k], energy) {
+        .map(|k| match (left_out[k], energy) {
             (true, _) => 0.0,
             (false, Energy::Area) => inv_m[k],
             (false, Energy::Uniform) => inv_m[k] * inv_m[k],
@@ -248,13 +248,13 @@ fn normal_control_cached(
 
     // 3. The fit's system: weights per row, one factorisation.
     let clock = Instant::now();
-    let w = fit_weights(&mesh.on_boundary, &inv_m, params.options.energy);
+    let left_out = mesh.fit_row_left_out();
+    let w = fit_weights(&left_out, &inv_m, params.options.energy);
     // Hard constraints eliminate the curve vertices; soft ones keep every vertex unknown.
     let first = if params.soft_weight.is_some() { 0 } else { nc };
     let known = known_rows(n, first, &[&mesh.positions]);
     let fit_energy = LeastSquares { a: &ops.ls, w: &w, first };
-    let reuse =
-        params.soft_weight.is_none() && params.options.energy == Energy::Area && !mesh.on_boundary.iter().any(|&b| b);
+    let reuse = params.soft_weight.is_none() && params.options.energy == Energy::Area && !left_out.iter().any(|&b| b);
     if !(reuse && prop.is_some()) && kept.fit.is_none() {
         let mut q = product_lower(&ops.ls, &w, &ops.ls, first);
         if let Some(omega) = params.soft_weight {
@@ -300,6 +300,7 @@ fn normal_control_cached(
             b[(k, 1)] = s * n_star[k].y;
             b[(k, 2)] = s * n_star[k].z;
         }
+        seam_targets(mesh, &ops.mass, &n_star, &mut h, &mut b);
         let mut rhs = fit_energy.rhs(Some(&b), &known);
         if let Some(omega) = params.soft_weight {
             for (k, p) in mesh.positions[..nc].iter().enumerate() {
@@ -318,4 +319,78 @@ fn normal_control_cached(
     }
     kept.propagation = prop;
     Ok(MethodResult { positions, propagated_normals: Some(n_star), guide_curvature: Some(h) })
+}
+
+/// The fit's targets on the seam rows of a mesh cut along creases (docs/design.md §13,
+/// [`Mesh::seam_rows`]): `b_v = −2 A_v H̄_v n_v − ½ Σ |e| ν_e`, with `H̄_v` the mean guide of
+/// the copy's neighbours that are not on a border (eq. 1 needs a closed one-ring) and `n_v` its
+/// side's normal. Overwrites rows `v` of `b` (n × 3) and `h`.
+pub(crate) fn seam_targets(mesh: &Mesh, mass: &[f64], normals: &[DVec3], h: &mut [f64], b: &mut Mat<f64>) {
+    if mesh.seam_rows.is_empty() {
+        return;
+    }
+    let mut sum: std::collections::HashMap<u32, (f64, usize)> =
+        mesh.seam_rows.iter().map(|&(v, _)| (v, (0.0, 0))).collect();
+    for f in &mesh.faces {
+        for k in 0..3 {
+            if let Some(s) = sum.get_mut(&f[k]) {
+                for j in [f[(k + 1) % 3], f[(k + 2) % 3]] {
+                    if !mesh.on_boundary[j as usize] {
+                        // (Each interior neighbour counts once per face it shares: a weighting.)
+                        s.0 += h[j as usize];
+                        s.1 += 1;
+                    }
+                }
+            }
+        }
+    }
+    for &(v, [c, _]) in &mesh.seam_rows {
+        let k = v as usize;
+        let (total, count) = sum[&v];
+        h[k] = if count > 0 { total / count as f64 } else { 0.0 };
+        let t = -2.0 * mass[k] * h[k] * normals[k] - c;
+        for d in 0..3 {
+            b[(k, d)] = t[d];
+        }
+    }
+}
+
+/// Targets for the seam rows of the normals' energy `‖L N‖²` in the 3D iterations (docs/design.md
+/// §13): the one-sided `(Ls N)_v` of the current surface's normals `prior` (the copies' own
+/// normals at the curve vertices). A copy's one-sided Laplacian holds the normal's derivative
+/// across the seam; a zero target would force it to vanish (the natural boundary condition
+/// of the biharmonic energy, which flattens a cap along its crease). `None` without seams.
+pub(crate) fn seam_normal_targets(mesh: &Mesh, ls: &crate::solve::sparse::Csc, prior: &[DVec3]) -> Option<Mat<f64>> {
+    if mesh.seam_rows.is_empty() {
+        return None;
+    }
+    let nc = mesh.num_curve;
+    let value = |j: usize| if j < nc { mesh.curve_normals[j] } else { prior[j] };
+    let mut b = Mat::<f64>::zeros(mesh.num_vertices(), 3);
+    for &(v, _) in &mesh.seam_rows {
+        let (rows, vals) = ls.col(v as usize);
+        let t: DVec3 = rows.iter().zip(vals).map(|(&j, &w)| w * value(j as usize)).sum();
+        for d in 0..3 {
+            b[(v as usize, d)] = t[d];
+        }
+    }
+    Some(b)
+}
+
+/// Targets of the seam rows in the propagation `L² [V N] = 0` (docs/design.md §13): the
+/// boundary terms of the one-sided Laplacians, `−½ Σ |e| ν_e` for the positions and
+/// `−½ Σ |e| S ν_e` for the normals ([`Mesh::seam_rows`]); zero targets would make the
+/// surface and its normals leave the seam flat. `None` without seams.
+fn seam_propagation_targets(mesh: &Mesh) -> Option<Mat<f64>> {
+    if mesh.seam_rows.is_empty() {
+        return None;
+    }
+    let mut b = Mat::<f64>::zeros(mesh.num_vertices(), 6);
+    for &(v, [c, u]) in &mesh.seam_rows {
+        for d in 0..3 {
+            b[(v as usize, d)] = -c[d];
+            b[(v as usize, 3 + d)] = -u[d];
+        }
+    }
+    Some(b)
 }

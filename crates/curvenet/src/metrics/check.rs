@@ -186,7 +186,7 @@ pub fn fuzz_case(data: &[u8]) -> Option<(Network, crate::Options)> {
                     let mut point = || DVec3::new(signed(next()), signed(next()), signed(next())) * 4.0;
                     let points: Vec<DVec3> = (0..n).map(|_| point()).collect();
                     let normals = (0..n).map(|_| DVec3::new(signed(next()), signed(next()), signed(next()))).collect();
-                    Curve { name: None, points, normals, closed: flags & 1 != 0, boundary: flags & 2 != 0 }
+                    Curve { points, normals, closed: flags & 1 != 0, boundary: flags & 2 != 0, ..Default::default() }
                 })
                 .collect();
             Network { curves, snap: None }

@@ -34,6 +34,23 @@ pub enum Truth {
         /// Semi-axes `(a, b, c)`.
         axes: DVec3,
     },
+    /// The lens: the boundary of the intersection of two balls of `radius` centred at
+    /// `z = ±offset` (`offset < radius`): two spherical caps meeting at a crease circle in the
+    /// plane z = 0 (the `lens` example: radius 1, offset ½, a 60° crease).
+    Lens {
+        /// The balls' radius.
+        radius: f64,
+        /// Distance of the balls' centres from the plane z = 0.
+        offset: f64,
+    },
+    /// The closed cylinder around the z axis: side `radius`, lids at `z = ±half_height` (the
+    /// `can` example: 1, 1).
+    Can {
+        /// Radius.
+        radius: f64,
+        /// Half the height.
+        half_height: f64,
+    },
     /// The plane `n · x = offset` (unit `n`).
     Plane {
         /// Unit normal `n`.
@@ -63,6 +80,30 @@ impl Truth {
             }
             Truth::Ellipsoid { axes } => closest_on_ellipsoid(axes, p),
             Truth::Plane { normal, offset } => p - normal * (normal.dot(p) - offset),
+            Truth::Lens { radius, offset } => {
+                // A cap's radial projection where it lands on the cap, else the crease circle.
+                let rim = (radius * radius - offset * offset).sqrt();
+                let mut best = DVec3::new(p.x, p.y, 0.0).normalize_or(DVec3::X) * rim;
+                for up in [1.0, -1.0] {
+                    let c = DVec3::Z * (-up * offset);
+                    let q = c + (p - c).normalize_or(DVec3::Z * up) * radius;
+                    if q.z * up >= 0.0 && q.distance(p) < best.distance(p) {
+                        best = q;
+                    }
+                }
+                best
+            }
+            Truth::Can { radius, half_height } => {
+                let r = DVec3::new(p.x, p.y, 0.0);
+                let side = r.normalize_or(DVec3::X) * radius + DVec3::Z * p.z.clamp(-half_height, half_height);
+                let lid = (if r.length() > radius { r.normalize() * radius } else { r })
+                    + DVec3::Z * (half_height * if p.z >= 0.0 { 1.0 } else { -1.0 });
+                if side.distance(p) <= lid.distance(p) {
+                    side
+                } else {
+                    lid
+                }
+            }
             Truth::Saddle => {
                 // Newton's method on the squared distance to (x, y, f(x, y)).
                 let (mut x, mut y) = (p.x, p.y);
@@ -100,19 +141,39 @@ impl Truth {
             Truth::Saddle => DVec3::new(-q.x, q.y, 1.0).normalize(),
             Truth::Ellipsoid { axes } => (q / (axes * axes)).normalize_or(DVec3::Z),
             Truth::Plane { normal, .. } => normal,
+            Truth::Lens { radius, offset } => {
+                // On the crease circle: the mean of the caps' normals (radial).
+                let up = q.z.signum();
+                if q.z.abs() < 1e-12 * radius {
+                    DVec3::new(q.x, q.y, 0.0).normalize_or(DVec3::X)
+                } else {
+                    (q + DVec3::Z * (up * offset)).normalize_or(DVec3::Z * up)
+                }
+            }
+            Truth::Can { radius, half_height } => {
+                let r = DVec3::new(q.x, q.y, 0.0);
+                let on_lid = (q.z.abs() - half_height).abs() < 1e-12 * half_height;
+                let on_side = (r.length() - radius).abs() < 1e-12 * radius;
+                match (on_lid, on_side) {
+                    (true, false) => DVec3::Z * q.z.signum(),
+                    (false, _) => r.normalize_or(DVec3::X),
+                    (true, true) => (r.normalize_or(DVec3::X) + DVec3::Z * q.z.signum()).normalize(),
+                }
+            }
         }
     }
 
     /// Parses a truth specification: `sphere` (unit), `sphere:r`, `sphere:cx,cy,cz,r`,
     /// `torus:R,r` (axis z), `cylinder:r` (axis z), `ellipsoid:a,b,c`, `plane` (z = 0),
-    /// `plane:nx,ny,nz,d` (n·x = d), `saddle` (z = (x² − y²)/2). `None` when `spec` is not of
+    /// `plane:nx,ny,nz,d` (n·x = d), `saddle` (z = (x² − y²)/2), `lens` / `lens:r,h` (two
+    /// caps of radius r centred at z = ±h), `can` / `can:r,h` (closed cylinder, z ∈ [−h, h]). `None` when `spec` is not of
     /// this form (it may then name a reference mesh file).
     pub fn parse(spec: &str) -> Option<std::result::Result<Truth, String>> {
         let (name, args) = match spec.split_once(':') {
             Some((n, a)) => (n, Some(a)),
             None => (spec, None),
         };
-        let known = ["sphere", "torus", "cylinder", "ellipsoid", "plane", "saddle"];
+        let known = ["sphere", "torus", "cylinder", "ellipsoid", "plane", "saddle", "lens", "can"];
         if !known.contains(&name) {
             return None;
         }
@@ -153,6 +214,12 @@ impl Truth {
             }
             ("plane", _) => return bad(" or plane:nx,ny,nz,d with a non-zero normal"),
             ("saddle", []) => Truth::Saddle,
+            ("lens", []) => Truth::Lens { radius: 1.0, offset: 0.5 },
+            ("lens", [r, h]) if *r > *h && *h >= 0.0 => Truth::Lens { radius: *r, offset: *h },
+            ("lens", _) => return bad(":r,h with r > h ≥ 0"),
+            ("can", []) => Truth::Can { radius: 1.0, half_height: 1.0 },
+            ("can", [r, h]) if positive(&[*r, *h]) => Truth::Can { radius: *r, half_height: *h },
+            ("can", _) => return bad(":r,h with r, h > 0"),
             _ => return bad(" without parameters"),
         }))
     }
@@ -533,6 +600,8 @@ pub fn example_truth(name: &str) -> Option<Truth> {
         "torus" => Truth::Torus { major: 4.0, minor: 2.0 },
         "cylinder" => Truth::Cylinder { radius: 1.0 },
         "saddle" => Truth::Saddle,
+        "lens" => Truth::Lens { radius: 1.0, offset: 0.5 },
+        "can" => Truth::Can { radius: 1.0, half_height: 1.0 },
         _ => return None,
     })
 }

@@ -10,13 +10,15 @@
 //! | `barrel` | the same circles, normals tilted 30° away from the middle | — (mid radius > 1) |
 //! | `bottleneck` | normals tilted 30° towards the middle | — (mid radius < 1) |
 //! | `saddle` | z = (x² − y²)/2 over the unit disk: boundary circle + the two axes (4 patches) | saddle |
+//! | `lens` | two unit-sphere caps meeting at a 60° crease circle (r = √3/2), two arcs over each cap (8 patches) | lens |
+//! | `can` | closed cylinder r = 1, z ∈ [−1, 1]: two 90° crease rims, four side lines, two diameters per lid (12 patches) | can |
 
 use crate::geom::DVec3;
 use crate::network::{Curve, Network};
 use std::f64::consts::{PI, TAU};
 
 /// Names and one-line descriptions of the bundled examples.
-pub const EXAMPLES: [(&str, &str); 8] = [
+pub const EXAMPLES: [(&str, &str); 10] = [
     ("sphere", "unit sphere: 3 great circles (6 nodes, 12 segments, 8 patches)"),
     ("globe", "unit sphere: 8 meridians and 3 parallels (26 nodes, 32 patches), 1 curve vertex in 10"),
     ("cube", "unit sphere traced by the 12 edges of a cube (8 nodes, 12 segments, 6 patches)"),
@@ -25,11 +27,13 @@ pub const EXAMPLES: [(&str, &str); 8] = [
     ("barrel", "the cylinder's circles with normals tilted 30° outward: a barrel"),
     ("bottleneck", "the cylinder's circles with normals tilted 30° inward: a bottleneck"),
     ("saddle", "z = (x² − y²)/2 over the unit disk: boundary circle and the two axes"),
+    ("lens", "two unit-sphere caps meeting at a 60° crease circle, two arcs over each cap"),
+    ("can", "closed cylinder (r = 1, z = ±1): two 90° crease rims, 4 side lines, 2 diameters per lid"),
 ];
 
 fn curve(name: &str, closed: bool, boundary: bool, samples: impl Iterator<Item = (DVec3, DVec3)>) -> Curve {
     let (points, normals) = samples.unzip();
-    Curve { name: Some(name.to_string()), points, normals, closed, boundary }
+    Curve { name: Some(name.to_string()), points, normals, closed, boundary, ..Default::default() }
 }
 
 /// `n` parameters `a + (b − a) k / n`, `k = 0..n` (closed: the end excluded) or `0..=n`.
@@ -168,6 +172,78 @@ fn saddle() -> Network {
     }
 }
 
+/// A crease curve through `samples` of `(position, left normal, right normal)`.
+fn crease(name: &str, closed: bool, samples: impl Iterator<Item = (DVec3, DVec3, DVec3)>) -> Curve {
+    let (mut points, mut normals, mut right) = (Vec::new(), Vec::new(), Vec::new());
+    for (p, l, r) in samples {
+        points.push(p);
+        normals.push(l);
+        right.push(r);
+    }
+    Curve { name: Some(name.to_string()), points, normals, normals_right: right, closed, ..Default::default() }
+}
+
+/// The lens: the boundary of the intersection of two unit balls centred at `z = ±½`. Its
+/// caps meet at the circle `z = 0`, `r = √3/2`, with normals 60° apart (a 60° crease); the
+/// crease runs counter-clockwise seen from above, so the upper cap is on its left.
+fn lens() -> Network {
+    let (a, h) = (0.75f64.sqrt(), 0.5);
+    let rim = params(0.0, TAU, 128, true).map(move |t| {
+        let (c, s) = (t.cos(), t.sin());
+        (DVec3::new(a * c, a * s, 0.0), DVec3::new(a * c, a * s, h), DVec3::new(a * c, a * s, -h))
+    });
+    let mut curves = vec![crease("rim", true, rim)];
+    let top = PI / 3.0;
+    for (k, up) in [(0, 1.0), (1, 1.0), (0, -1.0), (1, -1.0)] {
+        // Arcs over a cap in the planes y = 0 and x = 0: centre (0, 0, −up·h), polar angle φ.
+        let dir = if k == 0 { DVec3::X } else { DVec3::Y };
+        let arc = params(-top, top, 64, false).map(move |phi| {
+            let n = dir * phi.sin() + DVec3::Z * (up * phi.cos());
+            (n - DVec3::Z * (up * h), n)
+        });
+        let name = format!("{} arc {}", if up > 0.0 { "upper" } else { "lower" }, if k == 0 { "xz" } else { "yz" });
+        curves.push(curve(&name, false, false, arc));
+    }
+    Network { curves, snap: None }
+}
+
+/// The closed cylinder r = 1, z ∈ [−1, 1]: two crease rims (90°), four side lines and two
+/// diameters on each lid. Both rims run counter-clockwise seen from above: the top lid lies on
+/// the left of the top rim, the side on the left of the bottom rim.
+fn can() -> Network {
+    let rim = |z: f64| {
+        params(0.0, TAU, 128, true).map(move |t| {
+            let radial = DVec3::new(t.cos(), t.sin(), 0.0);
+            let (lid, side) = (DVec3::Z * z.signum(), radial);
+            let (l, r) = if z > 0.0 { (lid, side) } else { (side, lid) };
+            (radial + DVec3::Z * z, l, r)
+        })
+    };
+    let mut curves = vec![crease("top rim", true, rim(1.0)), crease("bottom rim", true, rim(-1.0))];
+    for k in 0..4 {
+        let t = k as f64 * PI / 2.0;
+        let radial = DVec3::new(t.cos(), t.sin(), 0.0);
+        curves.push(curve(
+            &format!("side {}", 90 * k),
+            false,
+            false,
+            params(-1.0, 1.0, 32, false).map(move |z| (radial + DVec3::Z * z, radial)),
+        ));
+    }
+    for z in [1.0f64, -1.0] {
+        for (name, dir) in [("x", DVec3::X), ("y", DVec3::Y)] {
+            let lid = if z > 0.0 { "top" } else { "bottom" };
+            curves.push(curve(
+                &format!("{lid} diameter {name}"),
+                false,
+                false,
+                params(-1.0, 1.0, 32, false).map(move |u| (dir * u + DVec3::Z * z, DVec3::Z * z.signum())),
+            ));
+        }
+    }
+    Network { curves, snap: None }
+}
+
 /// The bundled example `name` (see [`EXAMPLES`]).
 pub fn example(name: &str) -> Option<Network> {
     Some(match name {
@@ -179,6 +255,8 @@ pub fn example(name: &str) -> Option<Network> {
         "barrel" => tube(30f64.to_radians()),
         "bottleneck" => tube(-(30f64.to_radians())),
         "saddle" => saddle(),
+        "lens" => lens(),
+        "can" => can(),
         _ => return None,
     })
 }

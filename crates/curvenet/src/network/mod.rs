@@ -22,6 +22,13 @@ pub struct Curve {
     /// They point to the outside of the surface (the side the user sees). **Empty: unknown** —
     /// the pipeline infers them (`topology::orient`, docs/design.md §12).
     pub normals: Vec<DVec3>,
+    /// **Crease** normals (docs/design.md §13): the surface's normal on the *right* of the
+    /// curve, same length as `points`. Walking along the curve in sample order with `normals`
+    /// as "up", the surface that `normals` belongs to lies on the left and the one of
+    /// `normals_right` on the right; the surface folds along the curve (a G0 seam) wherever
+    /// the two differ by more than [`Network::SMOOTH_CREASE_DEGREES`]. **Empty: a smooth
+    /// curve** (one normal for both sides).
+    pub normals_right: Vec<DVec3>,
     /// The last sample connects back to the first.
     pub closed: bool,
     /// The curve bounds the surface: it has a patch on one side only.
@@ -42,6 +49,34 @@ impl Curve {
     /// The curve carries its normals (an empty `normals` means unknown: they are inferred).
     pub fn has_normals(&self) -> bool {
         !self.normals.is_empty()
+    }
+
+    /// The curve is a crease: it carries [`Curve::normals_right`].
+    pub fn is_crease(&self) -> bool {
+        !self.normals_right.is_empty()
+    }
+
+    /// The normal of a crease's both sides together at sample `i` (their normalised mean; the
+    /// left one where they cancel): the one normal the smooth stages and baselines use.
+    pub fn mean_normal(&self, i: usize) -> DVec3 {
+        let n = self.normals[i];
+        match self.normals_right.get(i) {
+            Some(r) => {
+                let m = (n.normalize_or_zero() + r.normalize_or_zero()).normalize_or_zero();
+                if m == DVec3::ZERO {
+                    n
+                } else {
+                    m
+                }
+            }
+            None => n,
+        }
+    }
+
+    /// The normal of the surface on the right of sample `i` (the left one, `normals[i]`, on a
+    /// smooth curve).
+    pub fn normal_right(&self, i: usize) -> DVec3 {
+        self.normals_right.get(i).copied().unwrap_or(self.normals[i])
     }
 }
 
@@ -79,6 +114,9 @@ impl Network {
     /// A normal within this cosine of the curve's direction on both sides of its sample
     /// (about 11°) is tangent to the curve: it defines no side of the surface.
     pub const TANGENT_NORMAL_COSINE: f64 = 0.98;
+    /// Where the two normals of a crease curve are closer than this angle (degrees), the
+    /// surface is smooth across the curve (a crease may fade out along a curve).
+    pub const SMOOTH_CREASE_DEGREES: f64 = 3.0;
 
     /// Bounding box of all samples.
     pub fn bounding_box(&self) -> Aabb {
@@ -101,11 +139,17 @@ impl Network {
         self.curves.iter().all(Curve::has_normals)
     }
 
+    /// Some curve is a crease ([`Curve::is_crease`]).
+    pub fn has_creases(&self) -> bool {
+        self.curves.iter().any(Curve::is_crease)
+    }
+
     /// A copy with every curve's normals removed (unknown): test data for normal inference.
     pub fn without_normals(&self) -> Network {
         let mut out = self.clone();
         for c in &mut out.curves {
             c.normals.clear();
+            c.normals_right.clear();
         }
         out
     }
@@ -154,32 +198,20 @@ impl Network {
                     *shared.entry(key).or_insert_with(|| (rng.gaussian3() * sigma, rng.gaussian3() * fraction));
                 *p += dp;
                 if known {
-                    let n = &mut c.normals[i];
-                    let m = n.normalize_or_zero() + dn;
-                    *n = if m.length() > 1e-6 { m.normalize() } else { *n };
+                    let right = c.normals_right.get_mut(i);
+                    for n in std::iter::once(&mut c.normals[i]).chain(right) {
+                        let m = n.normalize_or_zero() + dn;
+                        *n = if m.length() > 1e-6 { m.normalize() } else { *n };
+                    }
                 }
             }
         }
         out
     }
 
-    /// Checks the network and returns a cleaned copy: unit normals (a curve without normals
-    /// stays without: they are unknown), consecutive duplicate
-    /// samples merged (each merge is reported as a warning), a closed curve's repeated first
-    /// sample dropped.
-    ///
-    /// Errors ([`Error::Input`]), each naming the curve and sample: no curves; `points` and
-    /// `normals` of different lengths; a non-finite coordinate; a zero or non-normalisable
-    /// normal; fewer than 2 distinct samples (3 for a closed curve); all samples coincident;
-    /// a snapping tolerance that is not a positive number; coordinates or an extent outside
-    /// [`Network::MAX_EXTENT`]; a network far from the origin compared with its size
-    /// ([`Network::MAX_OFFSET_RATIO`]); a normal tangent to its curve
-    /// ([`Network::TANGENT_NORMAL_COSINE`]).
-    pub fn validated(&self) -> Result<(Network, Vec<Warning>)> {
-        let mut warnings = Vec::new();
-        if self.curves.is_empty() {
-            return Err(Error::input("the network has no curves: give at least one curve with points (and normals)"));
-        }
+    /// The per-sample checks of [`Network::validated`]: matching lengths, enough samples,
+    /// finite coordinates, normalisable normals (both sides of a crease).
+    fn check_samples(&self) -> Result<()> {
         for (ci, c) in self.curves.iter().enumerate() {
             let label = || curve_label(&self.curves, ci);
             if c.has_normals() && c.points.len() != c.normals.len() {
@@ -188,6 +220,17 @@ impl Network {
                     label(),
                     c.points.len(),
                     c.normals.len()
+                ))
+                .curve(ci));
+            }
+            if c.is_crease() && (!c.has_normals() || c.normals_right.len() != c.points.len()) {
+                return Err(Error::input(format!(
+                    "{}: {} points, {} normals and {} normals_right; a crease needs both normals at every point, \
+                     in the same order",
+                    label(),
+                    c.points.len(),
+                    c.normals.len(),
+                    c.normals_right.len()
                 ))
                 .curve(ci));
             }
@@ -212,11 +255,12 @@ impl Network {
                     .sample(si));
                 }
             }
-            for (si, n) in c.normals.iter().enumerate() {
+            let right = c.normals_right.iter().enumerate().map(|(si, n)| (si, n, "normals_right"));
+            for (si, n, what) in c.normals.iter().enumerate().map(|(si, n)| (si, n, "normal")).chain(right) {
                 let u = n.normalize_or_zero();
                 if !n.is_finite() || u == DVec3::ZERO || !u.is_finite() {
                     return Err(Error::input(format!(
-                        "{}, sample {si}: normal {} cannot be normalised; every sample needs a \
+                        "{}, sample {si}: {what} {} cannot be normalised; every sample needs a \
                          finite, non-zero normal pointing to the outside of the surface",
                         label(),
                         fmt_point(*n)
@@ -226,6 +270,27 @@ impl Network {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// Checks the network and returns a cleaned copy: unit normals (a curve without normals
+    /// stays without: they are unknown), consecutive duplicate
+    /// samples merged (each merge is reported as a warning), a closed curve's repeated first
+    /// sample dropped.
+    ///
+    /// Errors ([`Error::Input`]), each naming the curve and sample: no curves; `points` and
+    /// `normals` of different lengths; a non-finite coordinate; a zero or non-normalisable
+    /// normal; fewer than 2 distinct samples (3 for a closed curve); all samples coincident;
+    /// a snapping tolerance that is not a positive number; coordinates or an extent outside
+    /// [`Network::MAX_EXTENT`]; a network far from the origin compared with its size
+    /// ([`Network::MAX_OFFSET_RATIO`]); a normal tangent to its curve
+    /// ([`Network::TANGENT_NORMAL_COSINE`]).
+    pub fn validated(&self) -> Result<(Network, Vec<Warning>)> {
+        let mut warnings = Vec::new();
+        if self.curves.is_empty() {
+            return Err(Error::input("the network has no curves: give at least one curve with points (and normals)"));
+        }
+        self.check_samples()?;
         if let Some(s) = self.snap {
             if !(s.is_finite() && s > 0.0) {
                 return Err(Error::input(format!(
@@ -261,6 +326,7 @@ impl Network {
             let label = curve_label(&self.curves, ci);
             let mut points: Vec<DVec3> = Vec::with_capacity(c.points.len());
             let mut normals: Vec<DVec3> = Vec::with_capacity(c.points.len());
+            let mut normals_right: Vec<DVec3> = Vec::with_capacity(c.normals_right.len());
             let mut merged = Vec::new();
             // The input sample of each kept point (for the ids of errors).
             let mut input_sample: Vec<usize> = Vec::with_capacity(c.points.len());
@@ -275,6 +341,9 @@ impl Network {
                 points.push(*p);
                 if let Some(n) = c.normals.get(si) {
                     normals.push(n.normalize());
+                }
+                if let Some(n) = c.normals_right.get(si) {
+                    normals_right.push(n.normalize());
                 }
             }
             if !merged.is_empty() {
@@ -293,6 +362,7 @@ impl Network {
             if c.closed && points.len() > 1 && points[0].distance(points[points.len() - 1]) <= dup_tol {
                 points.pop();
                 normals.truncate(points.len());
+                normals_right.truncate(points.len());
                 warnings.push(
                     Warning::new(format!(
                         "{label}: closed curve repeats its first sample at the end; the repeat was dropped"
@@ -309,19 +379,30 @@ impl Network {
                 ))
                 .curve(ci));
             }
-            if let Some(si) = (!normals.is_empty()).then(|| tangent_normal(&points, &normals, c.closed)).flatten() {
+            let tangent = |n: &[DVec3]| (!n.is_empty()).then(|| tangent_normal(&points, n, c.closed)).flatten();
+            let bad = tangent(&normals).map(|si| (si, normals[si], "normal"));
+            if let Some((si, n, what)) =
+                bad.or_else(|| tangent(&normals_right).map(|si| (si, normals_right[si], "normals_right")))
+            {
                 let sample = input_sample[si];
                 return Err(Error::input(format!(
-                    "{label}, sample {sample}: normal {} is tangent to the curve (within {:.0}° of its direction); \
+                    "{label}, sample {sample}: {what} {} is tangent to the curve (within {:.0}° of its direction); \
                      normals must be across the curve, pointing to the outside of the surface",
-                    fmt_point(normals[si]),
+                    fmt_point(n),
                     Self::TANGENT_NORMAL_COSINE.acos().to_degrees()
                 ))
                 .curve(ci)
                 .sample(sample)
                 .point(points[si]));
             }
-            curves.push(Curve { name: c.name.clone(), points, normals, closed: c.closed, boundary: c.boundary });
+            curves.push(Curve {
+                name: c.name.clone(),
+                points,
+                normals,
+                normals_right,
+                closed: c.closed,
+                boundary: c.boundary,
+            });
         }
         Ok((Network { curves, snap: self.snap }, warnings))
     }

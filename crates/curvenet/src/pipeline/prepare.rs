@@ -16,6 +16,7 @@ use crate::operators::{cotan_operators, Metric};
 use crate::solve::timing::{seconds_since, timed, Instant};
 use crate::solve::SolveTimings;
 use crate::tessellate::{flatten_patches, tessellate, tessellate_conformal, VERTICES_PER_AREA};
+use crate::topology::creases::{check_sides, patch_normals, segment_sides, Seams};
 use crate::topology::cycles::{find_patches_open, half_edge_samples};
 use crate::topology::resample::{resample_network, Resampled};
 use crate::topology::{find_nodes, trim_dangling, Graph, Patch};
@@ -30,6 +31,9 @@ pub type Progress<'a> = &'a mut dyn FnMut(&str, f64, &str);
 pub(crate) struct Prepared {
     /// The mesh the final solve runs on (curve vertices first, with their input normals).
     pub mesh: Mesh,
+    /// The mesh cut open along the creases (docs/design.md §13): normal-control solves on it,
+    /// the baselines on `mesh`. `None` without creases.
+    pub seams: Option<Seams>,
     /// The target edge length `d`.
     pub spacing: f64,
     /// The snapping tolerance the nodes were found with.
@@ -91,15 +95,16 @@ pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'
     timings.resample += seconds_since(clock);
 
     let mut st = SolveTimings::default();
-    let (mesh, d, layout) = match options.mesh.patching {
+    let (mesh, seams, d, layout) = match options.mesh.patching {
         Patching::Planar => {
             let (res, mesh) = planar_stage(&topo, d, &mut timings)?;
+            let seams = timed(&mut timings.tessellate, || topo.seams(&res, &mesh));
             let layout = segment_layout(&topo.g, &res);
             topo.warnings.extend(fold_warnings(&mesh));
             progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
             let detail = format!("{} vertices, {} faces", mesh.num_vertices(), mesh.faces.len());
             progress("tessellate", timings.tessellate, &detail);
-            (mesh, d, layout)
+            (mesh, seams, d, layout)
         }
         Patching::Conformal => {
             let spacing = options.mesh.spacing.is_none().then_some((&size, target));
@@ -110,6 +115,7 @@ pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'
     let c = topo.g.node_components();
     Ok(Prepared {
         mesh,
+        seams,
         spacing: d,
         snap: topo.snap,
         curves: topo.net.curves.iter().map(|c| (c.points.clone(), c.closed)).collect(),
@@ -177,8 +183,23 @@ fn topology(network: &Network, mesh: &MeshOptions, timings: &mut Timings, progre
     });
     let (patches, w) = timed(&mut timings.cycles, || find_patches_open(&mut g, &splines))?;
     warnings.extend(w);
+    if net.has_creases() {
+        check_sides(&g, &patches, &g.labels)?;
+    }
     progress("cycles", timings.cycles, &format!("{} patches", patches.len()));
     Ok(Topology { net, g, splines, patches, snap, warnings })
+}
+
+impl Topology {
+    /// The mesh `mesh` (on the curve vertices `res`) cut open along the network's creases;
+    /// `None` without creases (or where every crease is smooth).
+    pub(super) fn seams(&self, res: &Resampled, mesh: &Mesh) -> Option<Seams> {
+        if !self.net.has_creases() {
+            return None;
+        }
+        let sides = segment_sides(&self.g, res);
+        Seams::cut(mesh, &patch_normals(&self.patches, res, &sides))
+    }
 }
 
 /// Resamples and tessellates at spacing `d` with planar projections (\[CG\] §3.3).
@@ -203,7 +224,7 @@ fn conformal_stage(
     timings: &mut Timings,
     st: &mut SolveTimings,
     progress: Progress<'_>,
-) -> Result<(Mesh, f64, Vec<[usize; 4]>)> {
+) -> Result<(Mesh, Option<Seams>, f64, Vec<[usize; 4]>)> {
     let (coarse_res, coarse) = match planar_stage(topo, 2.0 * d, timings) {
         Ok(stage) => stage,
         // Twice the spacing is too coarse for this network (its patches overlap, e.g. the
@@ -212,14 +233,21 @@ fn conformal_stage(
         Err(e) => return Err(e),
     };
     topo.warnings.extend(fold_warnings(&coarse));
-    // The first solution only shapes the flattening: normal-control whatever the method.
-    let ops = cotan_operators(&coarse, Metric::Planar, &coarse.positions);
+    // The first solution only shapes the flattening: normal-control whatever the method (on
+    // the mesh cut open along the creases, when there are any).
+    let seams = topo.seams(&coarse_res, &coarse);
+    let solved = seams.as_ref().map_or(&coarse, |s| &s.mesh);
+    let ops = cotan_operators(solved, Metric::Planar, &solved.positions);
     let params = NormalControlParams {
         options: NormalControlOptions { guide_updates: 1, ..Default::default() },
         ..Default::default()
     };
-    let first = normal_control(&coarse, &ops, &params, st)?;
-    let coarse = Mesh { positions: first.positions, ..coarse };
+    let first = normal_control(solved, &ops, &params, st)?;
+    let positions = match &seams {
+        Some(s) => s.merge(&first.positions),
+        None => first.positions,
+    };
+    let coarse = Mesh { positions, ..coarse };
     let flat = timed(&mut timings.tessellate, || flatten_patches(&topo.patches, &coarse_res, &coarse));
     let d = match size {
         Some((size, target)) => {
@@ -244,9 +272,10 @@ fn conformal_stage(
                 .patch(p),
         );
     }
+    let seams = timed(&mut timings.tessellate, || topo.seams(&res, &mesh));
     let detail = format!("conformal: {} vertices, {} faces", mesh.num_vertices(), mesh.faces.len());
     progress("tessellate", timings.tessellate, &detail);
-    Ok((mesh, d, segment_layout(&topo.g, &res)))
+    Ok((mesh, seams, d, segment_layout(&topo.g, &res)))
 }
 
 /// Checks that the tessellated patches join into an edge-manifold, consistently oriented mesh

@@ -107,7 +107,10 @@ pub(crate) fn solve_prepared(
     let mut timings = base;
     let mut st = prepared.solve_timings;
     let mut warnings = prepared.warnings.clone();
-    let mesh = &prepared.mesh;
+    // Normal-control solves on the mesh cut open along the creases; the baselines ignore
+    // the creases' second normals (design.md §13).
+    let seams = prepared.seams.as_ref().filter(|_| options.method == Method::NormalControl);
+    let mesh = seams.map_or(&prepared.mesh, |s| &s.mesh);
     let ops = timed(&mut st.operators, || domain_operators(mesh))?;
     let keep = kept.is_some();
     let mut one_shot: Option<Kept> = None;
@@ -140,6 +143,11 @@ pub(crate) fn solve_prepared(
         }
         iteration_report = (report.updates, Some(report.stop));
     }
+    if let Some(s) = seams {
+        result.positions = s.merge(&result.positions);
+        result.propagated_normals = result.propagated_normals.map(|n| s.merge(&n));
+        result.guide_curvature = result.guide_curvature.map(|h| s.merge(&h));
+    }
     timings.operators = st.operators;
     timings.factor = st.factor;
     timings.solve = st.solve;
@@ -156,7 +164,8 @@ fn iterate(
     state: &mut Kept,
     st: &mut crate::solve::SolveTimings,
 ) -> Result<(MethodResult, crate::methods::iterated::IterationReport)> {
-    let (mesh, d) = (&prepared.mesh, prepared.spacing);
+    let mesh = prepared.seams.as_ref().map_or(&prepared.mesh, |s| &s.mesh);
+    let d = prepared.spacing;
     let area: f64 = mesh
         .faces
         .iter()

@@ -44,7 +44,14 @@ pub(super) fn assemble(
         } else {
             report.sections += 1;
         }
-        curves.push(Curve { name: Some(t.name), points, normals, closed: t.closed, boundary: t.boundary });
+        curves.push(Curve {
+            name: Some(t.name),
+            points,
+            normals,
+            closed: t.closed,
+            boundary: t.boundary,
+            ..Default::default()
+        });
     }
     if report.crossings == 0 || curves.is_empty() {
         return Err(Error::topology(

@@ -25,6 +25,7 @@ pub(super) fn merge(res: &Resampled, parts: Vec<Result<PatchMesh>>) -> Result<Me
         face_patch: Vec::new(),
         pattern: Default::default(),
         fold_fallback: Vec::new(),
+        seam_rows: Vec::new(),
     };
     let parts = parts.into_iter().collect::<Result<Vec<PatchMesh>>>()?;
     let (new, tris) = parts.iter().fold((0, 0), |(v, t), p| (v + p.new_positions.len(), t + p.triangles.len()));

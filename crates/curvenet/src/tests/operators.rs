@@ -34,6 +34,7 @@ fn mesh_of(p: Vec<DVec3>, t: Vec<[u32; 3]>) -> Mesh {
         curve_normals: vec![],
         pattern: Default::default(),
         fold_fallback: vec![],
+        seam_rows: Vec::new(),
     }
 }
 

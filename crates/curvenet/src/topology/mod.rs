@@ -1,8 +1,9 @@
 //! Topology of the network: where curves meet ([`nodes`]) and which cycles of segments bound
 //! the patches of the surface ([`cycles`], \[CG\] §3.2); dangling parts of open networks are
 //! trimmed first ([`open`]); the normals of curves that come without them are inferred
-//! ([`orient`]).
+//! ([`orient`]); the mesh is cut open along crease curves for the solve ([`creases`]).
 
+pub mod creases;
 pub mod cycles;
 pub mod nodes;
 pub mod open;

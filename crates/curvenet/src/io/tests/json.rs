@@ -10,6 +10,7 @@ fn round_trip() {
             normals: vec![DVec3::Z, DVec3::Z],
             closed: false,
             boundary: true,
+            ..Default::default()
         }],
         snap: Some(1e-5),
     };

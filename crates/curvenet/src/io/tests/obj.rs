@@ -32,6 +32,7 @@ fn round_trip() {
             normals: vec![DVec3::Z; 3],
             closed: true,
             boundary: true,
+            ..Default::default()
         }],
         snap: None,
     };
@@ -76,6 +77,7 @@ fn a_network_without_normals_round_trips_without_vn() {
             normals: Vec::new(),
             closed: true,
             boundary: false,
+            ..Default::default()
         }],
         snap: None,
     };

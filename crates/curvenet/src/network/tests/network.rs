@@ -7,6 +7,7 @@ fn line(n: usize) -> Curve {
         normals: vec![DVec3::Z * 2.0; n],
         closed: false,
         boundary: false,
+        ..Default::default()
     }
 }
 

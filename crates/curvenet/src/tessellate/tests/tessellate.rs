@@ -22,7 +22,14 @@ pub(super) fn unit_square() -> Curve {
     let c = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
     let corner = |k: usize| DVec3::new(c[k % 4].0, c[k % 4].1, 0.0);
     let points: Vec<DVec3> = (0..40).map(|k| corner(k / 10).lerp(corner(k / 10 + 1), (k % 10) as f64 / 10.0)).collect();
-    Curve { name: Some("square".into()), normals: vec![DVec3::Z; points.len()], points, closed: true, boundary: true }
+    Curve {
+        name: Some("square".into()),
+        normals: vec![DVec3::Z; points.len()],
+        points,
+        closed: true,
+        boundary: true,
+        ..Default::default()
+    }
 }
 
 /// `V − E + F` of a triangle mesh (over the vertices its faces use).

@@ -15,7 +15,7 @@ fn rim(z: f64) -> Curve {
         })
         .collect();
     let normals = points.iter().map(|p| DVec3::new(p.x, p.y, 0.0)).collect();
-    Curve { name: None, points, normals, closed: true, boundary: true }
+    Curve { name: None, points, normals, closed: true, boundary: true, ..Default::default() }
 }
 
 /// Two facing circles bound a tube: an annulus (Euler characteristic 0) whose faces all face

@@ -23,6 +23,8 @@ pub(super) struct Polylines<'a> {
     pub(super) arcs: Vec<Vec<f64>>,
     /// Per curve: its name for messages ([`crate::network::curve_label`]).
     pub(super) labels: &'a [String],
+    /// Some curve is a crease: the split curves keep their sides' normals.
+    pub(super) creases: bool,
 }
 
 impl<'a> Polylines<'a> {
@@ -42,7 +44,7 @@ impl<'a> Polylines<'a> {
                 a
             })
             .collect();
-        Polylines { curves, arcs, labels }
+        Polylines { curves, arcs, labels, creases: curves.iter().any(Curve::is_crease) }
     }
 
     /// Number of edges of curve `c`.
@@ -90,14 +92,27 @@ impl<'a> Polylines<'a> {
         if !c.has_normals() {
             return DVec3::ZERO;
         }
-        let n0 = c.normals[l.edge];
-        let n1 = c.normals[(l.edge + 1) % c.points.len()];
-        let n = n0.lerp(n1, l.s);
-        if n.length_squared() > 1e-24 {
-            n.normalize()
-        } else {
-            n0
-        }
+        let n0 = c.mean_normal(l.edge);
+        let n1 = c.mean_normal((l.edge + 1) % c.points.len());
+        lerp_unit(n0, n1, l.s)
+    }
+
+    /// The unit normals of both sides of a crease curve at a location (`[left, right]`;
+    /// both the curve's normal on a smooth curve). The curve must carry normals.
+    pub(super) fn sides_at(&self, l: Loc) -> [DVec3; 2] {
+        let c = &self.curves[l.curve];
+        let j = (l.edge + 1) % c.points.len();
+        [lerp_unit(c.normals[l.edge], c.normals[j], l.s), lerp_unit(c.normal_right(l.edge), c.normal_right(j), l.s)]
+    }
+}
+
+/// `a + s (b − a)` normalised (`a` where it vanishes).
+fn lerp_unit(a: DVec3, b: DVec3, s: f64) -> DVec3 {
+    let n = a.lerp(b, s);
+    if n.length_squared() > 1e-24 {
+        n.normalize()
+    } else {
+        a
     }
 }
 

@@ -170,9 +170,22 @@ pub(super) fn meeting_node(lines: &Polylines, passages: &[Passage]) -> Result<No
     let labels = lines.labels;
     let position = passages.iter().map(|p| lines.point_at(p.2)).sum::<DVec3>() / passages.len() as f64;
     let normals: Vec<DVec3> = passages.iter().map(|p| lines.normal_at(p.2)).collect();
+    // Where a crease passes, the smooth curves may lie on its different sides (a cylinder's
+    // side line and lid diameter meet its rim 90° apart): each curve is compared with the
+    // sides of the creases only, and the best-agreeing pair of sides counts.
+    let crease = |p: &Passage| lines.curves[p.0].is_crease();
+    let any_crease = passages.iter().any(crease);
+    let sides: Vec<[DVec3; 2]> =
+        passages.iter().map(|p| if crease(p) { lines.sides_at(p.2) } else { [lines.normal_at(p.2); 2] }).collect();
     for a in 0..normals.len() {
         for b in a + 1..normals.len() {
-            let cos = normals[a].dot(normals[b]);
+            if any_crease && !crease(&passages[a]) && !crease(&passages[b]) {
+                continue;
+            }
+            let best = |x: &[DVec3; 2], y: &[DVec3; 2]| {
+                x.iter().flat_map(|u| y.iter().map(move |v| u.dot(*v))).fold(f64::NEG_INFINITY, f64::max)
+            };
+            let cos = if any_crease { best(&sides[a], &sides[b]) } else { normals[a].dot(normals[b]) };
             if cos < 0.0 {
                 return Err(Error::input(format!(
                     "{} and {} meet at {} with normals {:.0}° apart: one of them points inward. \

@@ -57,6 +57,10 @@ pub struct SplitCurve {
     /// Per sample: the index of the input curve's sample it stands for ([`usize::MAX`] for a
     /// node inserted between samples).
     pub origin: Vec<usize>,
+    /// Per sample, in a network with creases only (empty otherwise): the curve's own unit
+    /// normals `[left, right]` of its two sides (equal on a smooth curve), not averaged with
+    /// the other curves at nodes (docs/design.md §13).
+    pub sides: Vec<[DVec3; 2]>,
 }
 
 /// A portion of a curve between two adjacent nodes.

@@ -3,7 +3,7 @@
 //! sample when it is within a quarter of an edge, inserting a new sample otherwise), and the
 //! segments between consecutive nodes.
 
-use super::contacts::Polylines;
+use super::contacts::{Loc, Polylines};
 use super::meetings::OnCurve;
 use super::{Node, Segment, SplitCurve};
 use crate::error::{Error, Result};
@@ -19,7 +19,7 @@ pub(super) fn add_end_nodes(lines: &Polylines, nodes: &mut Vec<Node>, on_curve: 
             if on_curve[c].is_empty() {
                 nodes.push(Node {
                     position: curve.points[0],
-                    normal: curve.normals.first().copied().unwrap_or(DVec3::ZERO),
+                    normal: if curve.has_normals() { curve.mean_normal(0) } else { DVec3::ZERO },
                 });
                 on_curve[c].push((0.0, nodes.len() - 1));
             }
@@ -30,14 +30,14 @@ pub(super) fn add_end_nodes(lines: &Polylines, nodes: &mut Vec<Node>, on_curve: 
         if !near(0.0, &on_curve[c]) {
             nodes.push(Node {
                 position: curve.points[0],
-                normal: curve.normals.first().copied().unwrap_or(DVec3::ZERO),
+                normal: if curve.has_normals() { curve.mean_normal(0) } else { DVec3::ZERO },
             });
             on_curve[c].push((0.0, nodes.len() - 1));
         }
         if !near(total, &on_curve[c]) {
             nodes.push(Node {
                 position: curve.points[last],
-                normal: curve.normals.get(last).copied().unwrap_or(DVec3::ZERO),
+                normal: if curve.has_normals() { curve.mean_normal(last) } else { DVec3::ZERO },
             });
             on_curve[c].push((total, nodes.len() - 1));
         }
@@ -103,10 +103,17 @@ pub(super) fn split_curve(lines: &Polylines, c: usize, list: &mut [(f64, usize)]
     let mut points = Vec::with_capacity(n + inserts.len());
     let mut normals = Vec::with_capacity(n + inserts.len());
     let mut origin = Vec::with_capacity(n + inserts.len());
+    // A crease network's curves keep their own normals on both sides, nodes included.
+    let keep_sides = lines.creases;
+    let mut sides = Vec::with_capacity(if keep_sides { n + inserts.len() } else { 0 });
+    let arc = &lines.arcs[c];
     let mut markers = Vec::new();
     let mut k = 0;
     for (i, &snap) in snapped.iter().enumerate() {
         origin.push(i);
+        if keep_sides {
+            sides.push([curve.normals[i], curve.normal_right(i)]);
+        }
         match snap {
             Some(node) => {
                 markers.push((points.len(), node));
@@ -124,6 +131,12 @@ pub(super) fn split_curve(lines: &Polylines, c: usize, list: &mut [(f64, usize)]
             points.push(nodes[node].position);
             normals.push(nodes[node].normal);
             origin.push(usize::MAX);
+            if keep_sides {
+                let e = inserts[k].0;
+                let len = arc[e + 1] - arc[e];
+                let s = if len > 0.0 { ((inserts[k].1 - arc[e]) / len).clamp(0.0, 1.0) } else { 0.0 };
+                sides.push(lines.sides_at(Loc { curve: c, edge: e, s }));
+            }
             k += 1;
         }
     }
@@ -133,6 +146,9 @@ pub(super) fn split_curve(lines: &Polylines, c: usize, list: &mut [(f64, usize)]
         points.rotate_left(r);
         normals.rotate_left(r);
         origin.rotate_left(r);
+        if keep_sides {
+            sides.rotate_left(r);
+        }
         let m = points.len();
         for mk in markers.iter_mut() {
             mk.0 = (mk.0 + m - r) % m;
@@ -147,6 +163,7 @@ pub(super) fn split_curve(lines: &Polylines, c: usize, list: &mut [(f64, usize)]
         boundary: curve.boundary,
         nodes: markers,
         origin,
+        sides,
     }
 }
 

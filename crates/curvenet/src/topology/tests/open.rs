@@ -15,7 +15,7 @@ fn a_dangling_curve_is_left_out_with_a_warning_naming_it() {
                 [DVec3::new(c, s, 0.0), DVec3::new(0.0, c, s), DVec3::new(s, 0.0, c)][axis]
             })
             .collect();
-        Curve { name: None, normals: points.clone(), points, closed: true, boundary: false }
+        Curve { name: None, normals: points.clone(), points, closed: true, boundary: false, ..Default::default() }
     };
     let stick = Curve {
         name: Some("stick".into()),
@@ -23,6 +23,7 @@ fn a_dangling_curve_is_left_out_with_a_warning_naming_it() {
         normals: vec![DVec3::Z; 3],
         closed: false,
         boundary: false,
+        ..Default::default()
     };
     let mut curves: Vec<Curve> = (0..3).map(great).collect();
     curves.push(stick);

@@ -20,13 +20,13 @@ pub(super) fn circle(r: f64, z: f64, n: usize, normal: impl Fn(DVec3) -> DVec3) 
         })
         .collect();
     let normals = points.iter().map(|&p| normal(p)).collect();
-    Curve { name: None, points, normals, closed: true, boundary: false }
+    Curve { name: None, points, normals, closed: true, boundary: false, ..Default::default() }
 }
 
 /// An open polyline from `a` to `b` with `n` samples and normals +z.
 pub(super) fn line(a: DVec3, b: DVec3, n: usize) -> Curve {
     let points: Vec<DVec3> = (0..n).map(|i| a.lerp(b, i as f64 / (n - 1) as f64)).collect();
-    Curve { name: None, normals: vec![DVec3::Z; n], points, closed: false, boundary: false }
+    Curve { name: None, normals: vec![DVec3::Z; n], points, closed: false, boundary: false, ..Default::default() }
 }
 
 /// Two concentric circles in z = 0 joined by a radial bridge (segment 2): the face between the

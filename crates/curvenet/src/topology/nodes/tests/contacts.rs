@@ -3,7 +3,14 @@ use super::*;
 /// An open polyline through `points` with normals +z.
 fn line(points: &[[f64; 3]]) -> Curve {
     let points: Vec<DVec3> = points.iter().map(|&p| DVec3::from(p)).collect();
-    Curve { name: None, normals: vec![DVec3::Z; points.len()], points, closed: false, boundary: false }
+    Curve {
+        name: None,
+        normals: vec![DVec3::Z; points.len()],
+        points,
+        closed: false,
+        boundary: false,
+        ..Default::default()
+    }
 }
 
 fn labels(n: usize) -> Vec<String> {

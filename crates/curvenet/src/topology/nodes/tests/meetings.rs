@@ -4,7 +4,14 @@ use crate::network::Curve;
 
 fn line(points: &[[f64; 3]], normal: DVec3) -> Curve {
     let points: Vec<DVec3> = points.iter().map(|&p| DVec3::from(p)).collect();
-    Curve { name: None, normals: vec![normal; points.len()], points, closed: false, boundary: false }
+    Curve {
+        name: None,
+        normals: vec![normal; points.len()],
+        points,
+        closed: false,
+        boundary: false,
+        ..Default::default()
+    }
 }
 
 fn labels(n: usize) -> Vec<String> {

@@ -14,7 +14,7 @@ fn circle(axis: usize, n: usize, phase: f64) -> Curve {
             }
         })
         .collect();
-    Curve { name: None, normals: points.clone(), points, closed: true, boundary: false }
+    Curve { name: None, normals: points.clone(), points, closed: true, boundary: false, ..Default::default() }
 }
 
 #[test]
@@ -71,6 +71,7 @@ fn open_curve_ends_are_nodes() {
         normals: vec![DVec3::Z; 3],
         closed: false,
         boundary: false,
+        ..Default::default()
     };
     let net = Network { curves: vec![c], snap: None };
     let (g, _) = find_nodes(&net, net.snap_tolerance()).unwrap();
@@ -91,6 +92,7 @@ fn a_crossing_near_an_open_curve_end_keeps_the_order_of_the_nodes() {
         normals: vec![DVec3::Z; 3],
         closed: false,
         boundary: false,
+        ..Default::default()
     };
     let bar = Curve {
         name: Some("bar".into()),
@@ -98,6 +100,7 @@ fn a_crossing_near_an_open_curve_end_keeps_the_order_of_the_nodes() {
         normals: vec![DVec3::Z; 21],
         closed: false,
         boundary: false,
+        ..Default::default()
     };
     let net = Network { curves: vec![stick, bar], snap: Some(0.01) };
     let (g, _) = find_nodes(&net, 0.01).unwrap();
@@ -124,6 +127,7 @@ fn two_contacts_of_a_shallow_meeting_are_one_node() {
         normals: vec![DVec3::Z; 21],
         closed: false,
         boundary: false,
+        ..Default::default()
     };
     // The stick comes down at 15°, passes 0.8 tolerances above the bar's sample at x = 0 and
     // ends at x = 0.025, 0.13 tolerances above the bar.
@@ -131,8 +135,14 @@ fn two_contacts_of_a_shallow_meeting_are_one_node() {
     let end = DVec3::new(0.025, 0.008 - 0.025 * 15f64.to_radians().tan(), 0.0);
     let points: Vec<DVec3> = (0..8).rev().map(|k| end - u * (0.08 * k as f64)).collect();
     let n = points.len();
-    let stick =
-        Curve { name: Some("stick".into()), points, normals: vec![DVec3::Z; n], closed: false, boundary: false };
+    let stick = Curve {
+        name: Some("stick".into()),
+        points,
+        normals: vec![DVec3::Z; n],
+        closed: false,
+        boundary: false,
+        ..Default::default()
+    };
     let net = Network { curves: vec![stick, bar], snap: Some(snap) };
     let (g, _) = find_nodes(&net, snap).unwrap();
     // Nodes on the bar other than its two ends: one.

@@ -5,7 +5,7 @@ use crate::network::Curve;
 /// Samples at x = 0, 1, 2, 3 (open), normals +z.
 fn ruler(closed: bool) -> Curve {
     let points: Vec<DVec3> = (0..4).map(|i| DVec3::new(i as f64, 0.0, 0.0)).collect();
-    Curve { name: None, normals: vec![DVec3::Z; 4], points, closed, boundary: false }
+    Curve { name: None, normals: vec![DVec3::Z; 4], points, closed, boundary: false, ..Default::default() }
 }
 
 fn labels(n: usize) -> Vec<String> {
