@@ -49,6 +49,12 @@ pub struct SampleArgs {
     /// count apart; crossings exact on the mesh, free ends cut back to their last crossing).
     #[arg(long, value_name = "KIND", default_value = "planes", value_parser = ["planes", "principal"])]
     curves: String,
+    /// Find the mesh's creases: edges whose two faces' normals are more than DEG degrees apart
+    /// (30 when given without a value) are sharp; their chains become crease curves (two
+    /// normals per sample, `normals_right`; JSON only) and the other curves end on them.
+    #[arg(long, value_name = "DEG", num_args = 0..=1, require_equals = true,
+          default_missing_value = "30")]
+    crease_angle: Option<f64>,
 }
 
 fn parse_planes(s: &str) -> Result<[usize; 3], Error> {
@@ -72,7 +78,11 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
         boundary: !a.no_boundary,
         tilt: a.tilt,
         curves: if a.curves == "principal" { CurveFamily::Principal } else { CurveFamily::Planes },
+        crease_angle: a.crease_angle,
     };
+    if let Some(deg) = a.crease_angle.filter(|d| !(d.is_finite() && *d > 0.0 && *d < 180.0)) {
+        return Err(Error::usage(format!("--crease-angle {deg}: give an angle in degrees between 0 and 180")));
+    }
     let mesh = read_mesh(&a.mesh)?;
     let (net, r) = sample_mesh(&mesh.positions, &mesh.faces, &opts)?;
     let net = if a.no_normals { net.without_normals() } else { net };
@@ -120,11 +130,12 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
         dropped += &format!("; split {} pinch vertex(es) where the mesh boundary touches itself", r.pinches);
     }
     out!(
-        "{}: {} {}, {} boundary loops, {} crossings, {} samples, spacing {:.4e}{dropped}",
+        "{}: {} {}, {} boundary loops, {} creases, {} crossings, {} samples, spacing {:.4e}{dropped}",
         a.output.display(),
         r.sections,
         if a.curves == "principal" { "principal curves" } else { "sections" },
         r.boundary_loops,
+        r.creases,
         r.crossings,
         net.num_samples(),
         r.spacing

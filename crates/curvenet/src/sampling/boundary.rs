@@ -26,7 +26,15 @@ pub(super) fn trace_boundary(mesh: &Mesh, ends_on_boundary: &EndsOnBoundary, cro
             }
             let samples = loop_samples(mesh, &verts, ends_on_boundary, crossings);
             let name = format!("boundary #{}", loops.len());
-            loops.push(Traced { plane: None, samples, closed: true, boundary: true, name, cut: false });
+            loops.push(Traced {
+                plane: None,
+                samples,
+                closed: true,
+                boundary: true,
+                name,
+                cut: false,
+                right: Vec::new(),
+            });
         }
     }
     loops
@@ -39,7 +47,7 @@ fn boundary_successors(mesh: &Mesh) -> HashMap<u32, Vec<u32>> {
     for f in &mesh.faces {
         for k in 0..3 {
             let (a, b) = (f[k], f[(k + 1) % 3]);
-            if a != b && mesh.is_boundary(edge_key(a, b)) {
+            if a != b && mesh.is_boundary(edge_key(a, b)) && !mesh.on_crease(a, b) {
                 next_of.entry(a).or_default().push(b);
             }
         }
@@ -216,3 +224,124 @@ impl Trimmer {
 #[cfg(test)]
 #[path = "tests/boundary.rs"]
 mod tests;
+
+/// The creases of the mesh ([`super::mesh::cut_creases`]) as crease curves: chains of sharp
+/// edges between their junctions (vertices where other than two sharp edges meet, or where
+/// the chain turns by more than [`CREASE_CORNER_DEG`]), or closed loops. Per sample the
+/// normals of both sides (`samples` the left ones, on the left walking along the chain,
+/// `right` the others); the section ends on its edges (from either side) inserted as nodes in
+/// order along each edge, each counted once in `crossings`.
+pub(super) fn trace_creases(mesh: &Mesh, ends: &EndsOnBoundary, crossings: &mut usize) -> Vec<Traced> {
+    if mesh.sharp.is_empty() {
+        return Vec::new();
+    }
+    // Per original vertex: a position and, per sharp edge (directed a → b), the copies of a
+    // and b in the face on its left and in the face on its right.
+    let mut left: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
+    let mut pos: HashMap<u32, DVec3> = HashMap::new();
+    for f in &mesh.faces {
+        for k in 0..3 {
+            let (x, y) = (f[k], f[(k + 1) % 3]);
+            let (a, b) = (mesh.original[x as usize], mesh.original[y as usize]);
+            if mesh.sharp.contains(&edge_key(a, b)) {
+                left.insert((a, b), (x, y));
+                pos.insert(a, mesh.positions[x as usize]);
+            }
+        }
+    }
+    let mut next: HashMap<u32, Vec<u32>> = HashMap::new();
+    for &(a, b) in &mesh.sharp {
+        next.entry(a).or_default().push(b);
+        next.entry(b).or_default().push(a);
+    }
+    let turn = |a: u32, v: u32, b: u32| {
+        let (u, w) = (pos[&v] - pos[&a], pos[&b] - pos[&v]);
+        u.angle_between(w).to_degrees()
+    };
+    let junction = |v: u32| {
+        let list = &next[&v];
+        list.len() != 2 || turn(list[0], v, list[1]) > CREASE_CORNER_DEG
+    };
+    let mut used: std::collections::HashSet<(u32, u32)> = Default::default();
+    let mut chains: Vec<(Vec<u32>, bool)> = Vec::new();
+    let mut starts: Vec<u32> = next.keys().copied().collect();
+    starts.sort_unstable();
+    // Open chains from the junctions, then closed loops from any vertex left.
+    for pass in 0..2 {
+        for &s in &starts {
+            if pass == 0 && !junction(s) {
+                continue;
+            }
+            let mut outs = next[&s].clone();
+            outs.sort_unstable();
+            for first in outs {
+                if used.contains(&edge_key(s, first)) {
+                    continue;
+                }
+                let mut chain = vec![s];
+                let (mut prev, mut v) = (s, first);
+                used.insert(edge_key(s, v));
+                let closed = loop {
+                    chain.push(v);
+                    if v == s {
+                        chain.pop();
+                        break true;
+                    }
+                    if junction(v) {
+                        break false;
+                    }
+                    let Some(&w) = next[&v].iter().find(|&&w| w != prev && !used.contains(&edge_key(v, w))) else {
+                        break false;
+                    };
+                    used.insert(edge_key(v, w));
+                    prev = v;
+                    v = w;
+                };
+                chains.push((chain, closed));
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for (chain, closed) in chains {
+        let m = chain.len();
+        let edges = if closed { m } else { m - 1 };
+        let (mut samples, mut right) = (Vec::new(), Vec::new());
+        for k in 0..edges {
+            let (a, b) = (chain[k], chain[(k + 1) % m]);
+            let (Some(&(la, lb)), Some(&(rb, ra))) = (left.get(&(a, b)), left.get(&(b, a))) else { continue };
+            let n = |x: u32| mesh.normals[x as usize];
+            samples.push(Raw { p: pos[&a], n: n(la), node: k == 0 && !closed });
+            right.push(n(ra));
+            let (pa, pb) = (pos[&a], pos[&b]);
+            let d = pb - pa;
+            let mut xs: Vec<(f64, DVec3)> = [edge_key(la, lb), edge_key(ra, rb)]
+                .iter()
+                .filter_map(|e| ends.get(e))
+                .flatten()
+                .map(|r| ((r.p - pa).dot(d) / d.length_squared().max(f64::MIN_POSITIVE), r.p))
+                .collect();
+            xs.sort_by(|x, y| x.0.total_cmp(&y.0));
+            xs.dedup_by(|x, y| x.1.distance(y.1) <= 1e-9 * d.length());
+            for (t, p) in xs {
+                let t = t.clamp(0.0, 1.0);
+                samples.push(Raw { p, n: n(la).lerp(n(lb), t), node: true });
+                right.push(n(ra).lerp(n(rb), t));
+                *crossings += 1;
+            }
+            if k + 1 == edges && !closed {
+                samples.push(Raw { p: pb, n: n(lb), node: true });
+                right.push(n(rb));
+            }
+        }
+        if samples.len() < if closed { 3 } else { 2 } {
+            continue;
+        }
+        let name = format!("crease #{}", out.len());
+        out.push(Traced { plane: None, samples, closed, boundary: false, name, cut: false, right });
+    }
+    out
+}
+
+/// Sharp edges that turn by more than this many degrees at a vertex end their crease curves
+/// there (the curves meet at a node): a spline through a corner would round it.
+pub const CREASE_CORNER_DEG: f64 = 40.0;

@@ -125,6 +125,20 @@ impl Crossings {
                 }
             }
         }
+        // On a mesh cut along its creases a section crossing a crease ends on both sides at
+        // one point: one end on the boundary, not two crossings close together.
+        let tiny = 1e-9 * scales.diag;
+        for ((_, b), ps) in self.points.iter_mut() {
+            if *b == boundary_plane && !mesh.sharp.is_empty() {
+                let mut kept: Vec<DVec3> = Vec::with_capacity(ps.len());
+                for &p in ps.iter() {
+                    if !kept.iter().any(|q| q.distance(p) <= tiny) {
+                        kept.push(p);
+                    }
+                }
+                *ps = kept;
+            }
+        }
         self.shallow.extend(near_misses(&with_boundary, &self.points, scales.near, boundary_plane));
         // Crossings closer than `gap` to each other: two crossings of the same two sections
         // (the pipeline would merge them into one node where the curves touch without

@@ -86,7 +86,9 @@ fn crowded_ends(traced: &[Traced], gap: f64, spots: &mut [Vec<DVec3>]) {
     let mut crowded = vec![false; ends.len()];
     for (a, ea) in ends.iter().enumerate() {
         for (b, eb) in ends.iter().enumerate().skip(a + 1) {
-            if ea.0 != eb.0 && ea.1.distance(eb.1) <= gap && !crowded[a] && !crowded[b] {
+            // (Two ends on one point: a section crossing a crease, cut there, ends on both sides.)
+            let d = ea.1.distance(eb.1);
+            if ea.0 != eb.0 && d <= gap && d > 1e-9 * gap && !crowded[a] && !crowded[b] {
                 let (k, e) = if ea.2 <= eb.2 { (a, ea) } else { (b, eb) };
                 crowded[k] = true;
                 spots[e.0].push(e.1);
@@ -130,6 +132,7 @@ pub(super) fn cut_at_spots(t: Traced, spots: &[DVec3], gap: f64) -> Vec<Traced> 
             boundary: t.boundary,
             name: format!("{}.{}", t.name, k + 1),
             cut: true,
+            right: Vec::new(),
         })
         .collect()
 }

@@ -10,8 +10,8 @@ use super::{Raw, SampleOptions, SampleReport, Scales, Traced};
 use crate::geom::{Aabb, DVec3};
 use std::collections::HashMap;
 
-/// A resampled curve: positions and unit normals.
-pub(super) type Resampled = (Vec<DVec3>, Vec<DVec3>);
+/// A resampled curve: positions, unit normals and (a crease) the unit normals on its right.
+pub(super) type Resampled = (Vec<DVec3>, Vec<DVec3>, Vec<DVec3>);
 
 /// The key of a sample position (its bits): crossing samples are shared by the curves through
 /// them, so the ends of sections are found on the other curves by position.
@@ -41,7 +41,7 @@ pub(super) fn cover_holes(
             loop_at.insert(key(r.p), li);
         }
         let (small, resampled) = small_hole(l, opts, scales);
-        if small {
+        if small && l.right.is_empty() {
             report.small_holes += 1;
             loops_kept[li] = false;
         }
@@ -51,7 +51,8 @@ pub(super) fn cover_holes(
     for _ in 0..=rounds {
         let contacts = loop_contacts(&pieces, &loop_at, loops.len());
         for (li, c) in contacts.iter().enumerate() {
-            if loops_kept[li] && c.len() < 2 {
+            // (Crease curves stay: they meet the other curves at their junctions too.)
+            if loops_kept[li] && c.len() < 2 && loops[li].right.is_empty() {
                 loops_kept[li] = false;
                 if c.is_empty() {
                     report.dropped_boundary_loops += 1;
@@ -75,10 +76,17 @@ pub(super) fn cover_holes(
 /// than 3 sample spacings across, or slit-shaped (its sides within `scales.near` of each
 /// other: it would run alongside itself); with the loop resampled.
 fn small_hole(l: &Traced, opts: &SampleOptions, scales: &Scales) -> (bool, Resampled) {
+    if !l.right.is_empty() {
+        // A crease: both sides resampled alike (the same positions and nodes).
+        let (points, normals) = resample(&l.samples, l.closed, scales.spacing, opts.shared_nodes);
+        let other: Vec<Raw> = l.samples.iter().zip(&l.right).map(|(r, &n)| Raw { n, ..*r }).collect();
+        let (_, right) = resample(&other, l.closed, scales.spacing, opts.shared_nodes);
+        return (false, (points, normals, right));
+    }
     let (points, normals) = resample(&l.samples, true, scales.spacing, opts.shared_nodes);
     let small = Aabb::of(l.samples.iter().map(|r| r.p)).diagonal() < 3.0 * scales.spacing
         || (points.len() <= 40 && thin_loop(&points, scales.near));
-    (small, (points, normals))
+    (small, (points, normals, Vec::new()))
 }
 
 /// A closed polyline two of whose non-adjacent edges come within `tol` of each other.

@@ -20,6 +20,11 @@ pub(super) struct Mesh {
     pub(super) normals: Vec<DVec3>,
     /// The faces around each edge ([`EdgeFaces`]).
     pub(super) edge_faces: EdgeFaces,
+    /// Per vertex: the vertex of the repaired mesh before the cut along its creases
+    /// ([`cut_creases`]) it is a copy of.
+    pub(super) original: Vec<u32>,
+    /// The sharp edges ([`edge_key`] of `original` vertices) the mesh was cut along.
+    pub(super) sharp: std::collections::HashSet<(u32, u32)>,
 }
 
 /// What [`Mesh::repaired`] changed, for the [`super::SampleReport`].
@@ -66,15 +71,32 @@ impl Mesh {
     /// [`split_pinches`]); with its vertex normals and edge adjacency.
     ///
     /// Errors: [`Error::Input`] for an edge shared by more than two faces (naming the edge).
-    pub(super) fn repaired(positions: &[DVec3], faces: &[[u32; 3]], near: f64) -> Result<(Mesh, Repairs)> {
+    /// With `crease_angle` (radians), the repaired mesh is then cut open along its sharp edges
+    /// ([`cut_creases`]): its vertex normals are those of each side.
+    pub(super) fn repaired(
+        positions: &[DVec3],
+        faces: &[[u32; 3]],
+        near: f64,
+        crease_angle: Option<f64>,
+    ) -> Result<(Mesh, Repairs)> {
         let mut welded = weld(positions, faces);
         let mut moved = positions.to_vec();
         let zipped = zip_cracks(&mut moved, &mut welded, near);
         let pinches = split_pinches(&mut moved, &mut welded, near);
+        check_manifold(&edge_faces(&welded), positions.len())?;
+        let (original, sharp) = match crease_angle {
+            Some(angle) => cut_creases(&mut moved, &mut welded, angle),
+            None => ((0..moved.len() as u32).collect(), Default::default()),
+        };
         let normals = crate::operators::angle_weighted_normals(&welded, &moved);
         let edge_faces = edge_faces(&welded);
-        check_manifold(&edge_faces, positions.len())?;
-        Ok((Mesh { positions: moved, faces: welded, normals, edge_faces }, Repairs { zipped, pinches }))
+        let mesh = Mesh { positions: moved, faces: welded, normals, edge_faces, original, sharp };
+        Ok((mesh, Repairs { zipped, pinches }))
+    }
+
+    /// Whether the edge from `a` to `b` lies on a crease the mesh was cut along.
+    pub(super) fn on_crease(&self, a: u32, b: u32) -> bool {
+        !self.sharp.is_empty() && self.sharp.contains(&edge_key(self.original[a as usize], self.original[b as usize]))
     }
 
     /// Whether `e` ([`edge_key`]) is an edge of one face only.
@@ -299,4 +321,96 @@ pub fn split_pinches(positions: &mut Vec<DVec3>, faces: &mut [[u32; 3]], offset:
         }
     }
     split
+}
+
+/// Cuts the mesh open along its sharp edges: edges between two faces whose normals are more
+/// than `angle` (radians) apart (the mesh's dihedral-angle features, docs/design.md §13).
+/// At every vertex the faces around it fall into sectors separated by sharp edges; each
+/// sector after the first gets a copy of the vertex (appended). Returns per vertex the vertex
+/// it is a copy of (itself for the originals) and the sharp edges ([`edge_key`]).
+pub(crate) fn cut_creases(
+    positions: &mut Vec<DVec3>,
+    faces: &mut [[u32; 3]],
+    angle: f64,
+) -> (Vec<u32>, std::collections::HashSet<(u32, u32)>) {
+    let n = positions.len();
+    let normal = |f: &[u32; 3]| {
+        let p = |k: usize| positions[f[k] as usize];
+        (p(1) - p(0)).cross(p(2) - p(0)).normalize_or_zero()
+    };
+    let edges = edge_faces(faces);
+    let cos = angle.cos();
+    // (Sharp edges that touch the mesh's own boundary are left smooth: the boundary loops stay
+    // apart from the creases, which end one edge short of the boundary.)
+    let mut on_boundary = vec![false; n];
+    for (e, fs) in &edges {
+        if fs.len() == 1 {
+            on_boundary[e.0 as usize] = true;
+            on_boundary[e.1 as usize] = true;
+        }
+    }
+    let sharp: std::collections::HashSet<(u32, u32)> = edges
+        .iter()
+        .filter(|(e, fs)| {
+            fs.len() == 2
+                && !on_boundary[e.0 as usize]
+                && !on_boundary[e.1 as usize]
+                && normal(&faces[fs[0]]).dot(normal(&faces[fs[1]])) < cos
+        })
+        .map(|(e, _)| *e)
+        .collect();
+    let mut original: Vec<u32> = (0..n as u32).collect();
+    if sharp.is_empty() {
+        return (original, sharp);
+    }
+    let mut on_sharp: Vec<u32> =
+        sharp.iter().flat_map(|&(a, b)| [a, b]).collect::<std::collections::HashSet<u32>>().into_iter().collect();
+    on_sharp.sort_unstable();
+    let mut around: HashMap<u32, Vec<usize>> = on_sharp.iter().map(|&v| (v, Vec::new())).collect();
+    for (fi, f) in faces.iter().enumerate() {
+        for &v in f {
+            if let Some(list) = around.get_mut(&v) {
+                list.push(fi);
+            }
+        }
+    }
+    for v in on_sharp {
+        let fs = &around[&v];
+        let mut uf = crate::topology::UnionFind::new(fs.len());
+        let mut by_other: HashMap<u32, usize> = HashMap::new();
+        for (k, &fi) in fs.iter().enumerate() {
+            for &w in faces[fi].iter().filter(|&&w| w != v) {
+                // (`w` may already be a copy: the sharp edges are keyed by the originals.)
+                if sharp.contains(&edge_key(v, original[w as usize])) {
+                    continue;
+                }
+                match by_other.get(&w) {
+                    Some(&j) => uf.union(j, k),
+                    None => {
+                        by_other.insert(w, k);
+                    }
+                }
+            }
+        }
+        let mut copy_of_root: HashMap<usize, u32> = HashMap::new();
+        let first_root = uf.find(0);
+        copy_of_root.insert(first_root, v);
+        for k in 0..fs.len() {
+            let r = uf.find(k);
+            let id = *copy_of_root.entry(r).or_insert_with(|| {
+                positions.push(positions[v as usize]);
+                original.push(v);
+                (positions.len() - 1) as u32
+            });
+            if id != v {
+                let f = &mut faces[fs[k]];
+                for x in f.iter_mut() {
+                    if *x == v {
+                        *x = id;
+                    }
+                }
+            }
+        }
+    }
+    (original, sharp)
 }

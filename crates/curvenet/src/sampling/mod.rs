@@ -92,6 +92,12 @@ pub struct SampleOptions {
     /// curvature directions ([`CurveFamily::Principal`]), [`PRINCIPAL_SEPARATION`] × the box's
     /// mean extent over the mean of the `planes` counts apart.
     pub curves: CurveFamily,
+    /// `--crease-angle DEG`: mesh edges whose faces' normals are more than this many degrees
+    /// apart are sharp; their chains become crease curves of the network (with the normals of
+    /// both sides, docs/design.md §13) and the other curves end on them. Default `None` (no
+    /// creases) until the beetle samples cleanly with them (design.md §13, known bugs);
+    /// [`SampleOptions::DEFAULT_CREASE_DEG`] is the angle to give.
+    pub crease_angle: Option<f64>,
 }
 
 /// The curves [`sample_mesh`] draws on the mesh.
@@ -118,6 +124,8 @@ impl SampleOptions {
     pub const SNAP_SPACING: f64 = 0.12;
     /// Default `tilt` in degrees.
     pub const DEFAULT_TILT_DEG: f64 = 20.0;
+    /// The `crease_angle` to give, in degrees (`--crease-angle` without a value).
+    pub const DEFAULT_CREASE_DEG: f64 = 30.0;
 }
 
 impl Default for SampleOptions {
@@ -131,6 +139,7 @@ impl Default for SampleOptions {
             boundary: true,
             tilt: Self::DEFAULT_TILT_DEG,
             curves: CurveFamily::Planes,
+            crease_angle: None,
         }
     }
 }
@@ -142,6 +151,8 @@ pub struct SampleReport {
     pub sections: usize,
     /// Boundary loops kept.
     pub boundary_loops: usize,
+    /// Crease curves (chains of the mesh's sharp edges, [`SampleOptions::crease_angle`]).
+    pub creases: usize,
     /// Crossings between sections (and section ends on boundary loops).
     pub crossings: usize,
     /// Sections left out because they meet no other curve.
@@ -204,6 +215,9 @@ struct Traced {
     name: String,
     /// A piece of a section cut at a bad spot ([`cut::cut_at_spots`]): it may end at crossings.
     cut: bool,
+    /// A crease curve ([`boundary::trace_creases`]): the normals of the surface on its right,
+    /// per sample (`samples` hold the left ones). Empty for the other curves.
+    right: Vec<DVec3>,
 }
 
 /// Polyline ends on boundary edges: edge ([`mesh::edge_key`]) → the end samples on it.
@@ -300,7 +314,7 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     let bbox = mesh::check_mesh(positions, faces)?;
     let scales = Scales::new(bbox, opts)?;
     check_options(opts)?;
-    let (mesh, repairs) = Mesh::repaired(positions, faces, scales.near)?;
+    let (mesh, repairs) = Mesh::repaired(positions, faces, scales.near, opts.crease_angle.map(f64::to_radians))?;
     let principal = opts.curves == CurveFamily::Principal;
     let traces = if principal {
         principal::trace_principal(&mesh, opts, &scales)
@@ -312,8 +326,11 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     if opts.boundary {
         boundary_loops = boundary::trace_boundary(&mesh, &traces.ends_on_boundary, &mut crossings);
     }
+    let creases = boundary::trace_creases(&mesh, &traces.ends_on_boundary, &mut crossings);
+    let has_creases = !creases.is_empty();
+    boundary_loops.extend(creases);
     let mut traced = traces.traced;
-    boundary::mark_ends(&mut traced, !boundary_loops.is_empty() && !principal);
+    boundary::mark_ends(&mut traced, (!boundary_loops.is_empty() || has_creases) && !principal);
     let mut report = SampleReport {
         spacing: scales.spacing,
         crossings,

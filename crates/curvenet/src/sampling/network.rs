@@ -32,14 +32,20 @@ pub(super) fn assemble(
     let mut curves = Vec::new();
     let loops = loops.into_iter().map(|(t, pn)| (t, Some(pn)));
     for (t, pn) in pieces.into_iter().map(|t| (t, None)).chain(loops) {
-        let (mut points, mut normals) =
-            pn.unwrap_or_else(|| resample(&t.samples, t.closed, scales.spacing, opts.shared_nodes));
-        report.hairpins += remove_hairpins(&mut points, &mut normals, t.closed, scales.near);
+        let (mut points, mut normals, normals_right) = pn.unwrap_or_else(|| {
+            let (p, n) = resample(&t.samples, t.closed, scales.spacing, opts.shared_nodes);
+            (p, n, Vec::new())
+        });
+        if normals_right.is_empty() {
+            report.hairpins += remove_hairpins(&mut points, &mut normals, t.closed, scales.near);
+        }
         let need = if t.closed { 3 } else { 2 };
         if points.len() < need {
             continue;
         }
-        if t.boundary {
+        if !normals_right.is_empty() {
+            report.creases += 1;
+        } else if t.boundary {
             report.boundary_loops += 1;
         } else {
             report.sections += 1;
@@ -48,9 +54,9 @@ pub(super) fn assemble(
             name: Some(t.name),
             points,
             normals,
+            normals_right,
             closed: t.closed,
             boundary: t.boundary,
-            ..Default::default()
         });
     }
     if report.crossings == 0 || curves.is_empty() {

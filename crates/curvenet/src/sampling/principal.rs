@@ -181,6 +181,7 @@ fn polylines(mesh: &Mesh, lines: &[Line], x: &mut LineCrossings) -> (Vec<Traced>
             boundary: false,
             name: format!("principal #{li}"),
             cut: false,
+            right: Vec::new(),
         });
     }
     (traced, cuts, ends_on_boundary)

@@ -71,13 +71,13 @@ pub(super) fn cut_faces(mesh: &Mesh, planes: &Planes) -> (Vec<FaceCut>, Vec<Vec<
 /// the ends on boundary edges are recorded for the boundary loops.
 pub(super) fn trace_sections(mesh: &Mesh, opts: &SampleOptions, scales: &Scales) -> Traces {
     let mut planes = Planes::new(&mesh.positions, opts.planes, opts.tilt, scales.diag);
-    let placed = place_planes(mesh, &mut planes, opts.boundary, scales);
+    let placed = place_planes(mesh, &mut planes, opts.boundary || !mesh.sharp.is_empty(), scales);
     let mut chainer = Chainer {
         mesh,
         planes: &planes,
         cuts: &placed.cuts,
         crossings: &placed.crossings,
-        boundary: opts.boundary,
+        boundary: opts.boundary || !mesh.sharp.is_empty(),
         trimmer: Trimmer::new(mesh, 3.0 * scales.snap),
         traced: Vec::new(),
         ends_on_boundary: HashMap::new(),
@@ -174,6 +174,7 @@ impl Chainer<'_> {
                 boundary: false,
                 name: format!("{}={:.6} #{piece}", axis_name[axis], lev),
                 cut: false,
+                right: Vec::new(),
             });
             piece += 1;
         }

@@ -3,7 +3,7 @@ use crate::sampling::tests::{raw, traced, unit_square};
 
 fn square() -> Mesh {
     let (p, f) = unit_square();
-    Mesh::repaired(&p, &f, 1e-3).unwrap().0
+    Mesh::repaired(&p, &f, 1e-3, None).unwrap().0
 }
 
 #[test]
@@ -38,13 +38,13 @@ fn the_boundary_of_a_square_is_one_loop_with_the_section_ends_inserted_in_order(
 #[test]
 fn a_closed_mesh_has_no_boundary_loop_and_two_holes_give_two() {
     let (p, f) = crate::sampling::tests::unit_cube();
-    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3, None).unwrap();
     assert!(trace_boundary(&mesh, &HashMap::new(), &mut 0).is_empty());
     // The cube without its top and bottom: a tube with two boundary squares.
     let tube: Vec<[u32; 3]> =
         f.iter().copied().filter(|t| t.iter().any(|&v| v < 4) && t.iter().any(|&v| v >= 4)).collect();
     assert_eq!(tube.len(), 8);
-    let (mesh, _) = Mesh::repaired(&p, &tube, 1e-3).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &tube, 1e-3, None).unwrap();
     let loops = trace_boundary(&mesh, &HashMap::new(), &mut 0);
     assert_eq!(loops.len(), 2);
     for l in &loops {

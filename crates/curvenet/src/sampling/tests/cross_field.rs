@@ -37,7 +37,7 @@ fn a_face_frame_maps_its_plane_to_2d_and_back() {
 #[test]
 fn on_a_cylinder_the_field_follows_the_axis_and_the_circles() {
     let (p, f) = cylinder(48, 12, 0.25);
-    let (mesh, _) = Mesh::repaired(&p, &f, 1e-4).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &f, 1e-4, None).unwrap();
     // The fixed axis at 45° to the principal directions: the curvature wins.
     let axis = DVec3::new(1.0, 0.0, 1.0).normalize();
     let field = CrossField::new(&mesh, axis, 4.0);
@@ -58,7 +58,7 @@ fn on_a_cylinder_the_field_follows_the_axis_and_the_circles() {
 #[test]
 fn on_a_flat_square_the_field_follows_the_projected_axis() {
     let p = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
-    let (mesh, _) = Mesh::repaired(&p, &[[0, 1, 2], [0, 2, 3]], 1e-4).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &[[0, 1, 2], [0, 2, 3]], 1e-4, None).unwrap();
     // No curvature: the axis (1, 2, 5) projected on the plane is (1, 2, 0).
     let field = CrossField::new(&mesh, DVec3::new(1.0, 2.0, 5.0).normalize(), 1.0);
     let want = DVec3::new(1.0, 2.0, 0.0).normalize();

@@ -6,7 +6,7 @@ use crate::sampling::{SampleOptions, Scales};
 
 /// The one-triangle mesh through `a`, `b`, `c`.
 fn triangle(a: DVec3, b: DVec3, c: DVec3) -> Mesh {
-    Mesh::repaired(&[a, b, c], &[[0, 1, 2]], 1e-6).unwrap().0
+    Mesh::repaired(&[a, b, c], &[[0, 1, 2]], 1e-6, None).unwrap().0
 }
 
 /// Planes `x = lx` and `y = ly`.

@@ -16,7 +16,15 @@ fn square_loop(x0: f64, side: f64, nodes: &[usize]) -> Traced {
     for &k in nodes {
         samples[k].node = true;
     }
-    Traced { plane: None, samples, closed: true, boundary: true, name: "boundary".into(), cut: false }
+    Traced {
+        plane: None,
+        samples,
+        closed: true,
+        boundary: true,
+        name: "boundary".into(),
+        cut: false,
+        right: Vec::new(),
+    }
 }
 
 /// An open section through `pts` with nodes at `nodes`.

@@ -4,7 +4,7 @@ use crate::sampling::tests::{unit_cube, unit_square};
 #[test]
 fn a_cube_is_closed_and_every_edge_has_two_faces() {
     let (p, f) = unit_cube();
-    let (mesh, repairs) = Mesh::repaired(&p, &f, 0.01).unwrap();
+    let (mesh, repairs) = Mesh::repaired(&p, &f, 0.01, None).unwrap();
     assert_eq!((repairs.zipped, repairs.pinches), (0, 0));
     assert_eq!(mesh.faces, f);
     assert_eq!(mesh.edge_faces.len(), 18);
@@ -31,7 +31,7 @@ fn vertices_at_the_same_position_are_welded() {
         DVec3::Y,
     ];
     let f = vec![[0, 1, 2], [3, 4, 5]];
-    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3, None).unwrap();
     assert_eq!(mesh.faces, vec![[0, 1, 2], [0, 2, 5]]);
     // Four boundary edges, one inner edge.
     assert_eq!(mesh.edge_faces.values().filter(|fs| fs.len() == 1).count(), 4);
@@ -74,7 +74,7 @@ fn a_narrow_crack_is_zipped() {
     for v in [f[0][1], f[0][2]] {
         assert!((p[v as usize].x - 1.0005).abs() < 1e-12, "{}", p[v as usize]);
     }
-    let (mesh, _) = Mesh::repaired(&p, &f, 0.0).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &f, 0.0, None).unwrap();
     assert_eq!(mesh.edge_faces.values().filter(|fs| fs.len() == 1).count(), 6);
     assert_eq!(mesh.edge_faces.values().filter(|fs| fs.len() == 2).count(), 3);
     // Not within the tolerance: nothing changes.

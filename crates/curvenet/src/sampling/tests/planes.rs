@@ -51,7 +51,7 @@ fn planes_split_the_extent_into_equal_slabs() {
 #[test]
 fn planes_without_bad_crossings_stay_where_they_are() {
     let (p, f) = unit_cube();
-    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3, None).unwrap();
     let opts = SampleOptions { spacing: Some(0.05), ..Default::default() };
     let scales = Scales::new(Aabb::of(p.iter().copied()), &opts).unwrap();
     // Sections x = 0.3 and y = 0.6: loops around the cube that cross at right angles on the

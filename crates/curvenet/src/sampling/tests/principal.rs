@@ -5,7 +5,7 @@ use crate::sampling::streamlines::Pt;
 /// The square `[0, 1]²` as two triangles.
 fn square() -> Mesh {
     let p = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
-    Mesh::repaired(&p, &[[0, 1, 2], [0, 2, 3]], 1e-4).unwrap().0
+    Mesh::repaired(&p, &[[0, 1, 2], [0, 2, 3]], 1e-4, None).unwrap().0
 }
 
 /// A curve through `pts`, all in face 0 of [`square`] (a polyline of one face per segment).

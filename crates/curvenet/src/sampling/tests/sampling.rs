@@ -56,7 +56,7 @@ pub(crate) fn raw(x: f64, y: f64, node: bool) -> Raw {
 
 /// A traced section through `samples`.
 pub(crate) fn traced(samples: Vec<Raw>, closed: bool) -> Traced {
-    Traced { plane: Some(0), samples, closed, boundary: false, name: "s".into(), cut: false }
+    Traced { plane: Some(0), samples, closed, boundary: false, name: "s".into(), cut: false, right: Vec::new() }
 }
 
 #[test]

@@ -13,7 +13,7 @@ fn scales(p: &[DVec3]) -> Scales {
 fn a_plane_cuts_a_tetrahedron_along_a_triangle() {
     let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
     let f = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
-    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3, None).unwrap();
     let mut planes = Planes::new(&p, [1, 0, 0], 0.0, 1.0);
     assert!((planes.planes[0].1 - 0.5).abs() < 1e-15);
     planes.planes[0].1 = 0.5;
@@ -44,7 +44,7 @@ fn a_plane_cuts_a_tetrahedron_along_a_triangle() {
 #[test]
 fn a_plane_section_of_the_unit_cube_is_a_square_loop() {
     let (p, f) = unit_cube();
-    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3, None).unwrap();
     let opts = SampleOptions { planes: [1, 0, 0], tilt: 0.0, ..Default::default() };
     let t = trace_sections(&mesh, &opts, &scales(&p));
     assert_eq!(t.traced.len(), 1);
@@ -68,7 +68,7 @@ fn a_plane_section_of_the_unit_cube_is_a_square_loop() {
 #[test]
 fn sections_of_a_square_end_on_the_boundary_and_cross() {
     let (p, f) = unit_square();
-    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3, None).unwrap();
     // Two planes of the first family, one of the second (through the middle, off the
     // diagonal where the others cross it), tilted: three chords, two crossings.
     let opts = SampleOptions { planes: [2, 1, 0], tilt: 10.0, ..Default::default() };
@@ -98,7 +98,7 @@ fn sections_of_a_square_end_on_the_boundary_and_cross() {
 #[test]
 fn an_edge_point_interpolates_the_vertex_normals() {
     let (p, f) = unit_cube();
-    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &f, 1e-3, None).unwrap();
     let dirs = section_directions(0.0);
     // Edge 0–1 along x, cut by x = 0.25.
     let (q, n) = edge_point(&mesh, &dirs, (0, 1), (0, 0.25));

@@ -34,7 +34,7 @@ fn a_segment_alongside_is_found_within_the_radius_and_angle() {
 #[test]
 fn a_streamline_on_a_flat_square_is_a_straight_chord_between_boundary_edges() {
     let p = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
-    let (mesh, _) = Mesh::repaired(&p, &[[0, 1, 2], [0, 2, 3]], 1e-4).unwrap();
+    let (mesh, _) = Mesh::repaired(&p, &[[0, 1, 2], [0, 2, 3]], 1e-4, None).unwrap();
     // The axis projected on the square: (−1, 1), across the diagonal between the faces.
     let field = CrossField::new(&mesh, DVec3::new(-1.0, 1.0, 1.0).normalize(), 2f64.sqrt());
     let opts = crate::sampling::SampleOptions { spacing: Some(0.01), ..Default::default() };

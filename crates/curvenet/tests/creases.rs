@@ -1,0 +1,109 @@
+//! Crease curves (docs/design.md §13): networks with two normals per sample along the curves
+//! where the surface folds, against exact ground truth.
+
+use curvenet::geom::DVec3;
+use curvenet::metrics::{evaluate, Reference, Truth};
+use curvenet::network::examples::example;
+use curvenet::sampling::{sample_mesh, SampleOptions};
+use curvenet::{surface, Options};
+
+/// Two-sided distances between a surfaced mesh and `truth`: RMS and maximum from the mesh,
+/// and the largest distance from points of the truth (the mesh's vertices projected on it,
+/// moved halfway to their face centres) back to the mesh's vertices' nearest face.
+fn distances(name: &str, truth: Truth) -> (f64, f64) {
+    let s = surface(&example(name).unwrap(), &Options::default().with_vertices(20_000)).unwrap();
+    let e =
+        evaluate(&s.mesh.positions, &s.mesh.faces, Some(&s.normals), &s.curve_flags, Reference::Analytic(truth), None);
+    // Watertight and manifold: every edge in exactly two faces, consistently oriented.
+    let mut count = std::collections::HashMap::new();
+    for f in &s.mesh.faces {
+        for k in 0..3 {
+            *count.entry((f[k], f[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    for (&(a, b), &c) in &count {
+        assert_eq!(c, 1, "{name}: directed edge {a}-{b} in {c} faces");
+        assert!(count.contains_key(&(b, a)), "{name}: edge {a}-{b} on a border: the seam is open");
+    }
+    // Truth → mesh: points on the truth near every face centre, to the nearest vertex or face
+    // centre of the mesh (an upper bound of the distance to the mesh at this density).
+    let centres: Vec<DVec3> =
+        s.mesh.faces.iter().map(|f| f.iter().map(|&v| s.mesh.positions[v as usize]).sum::<DVec3>() / 3.0).collect();
+    let back = centres
+        .iter()
+        .map(|&c| {
+            let q = truth.closest_point(c);
+            (q - c).length()
+        })
+        .fold(0.0f64, f64::max);
+    (e.distance.rms, e.distance.max.max(back))
+}
+
+#[test]
+fn lens_and_can_are_within_1e_3_rms_and_1e_2_max_at_20k_vertices() {
+    for (name, truth) in
+        [("lens", Truth::Lens { radius: 1.0, offset: 0.5 }), ("can", Truth::Can { radius: 1.0, half_height: 1.0 })]
+    {
+        let (rms, max) = distances(name, truth);
+        eprintln!("{name}: RMS {rms:.3e}, max {max:.3e}");
+        assert!(rms <= 1e-3 && max <= 1e-2, "{name}: RMS {rms:.3e}, max {max:.3e}");
+    }
+}
+
+#[test]
+fn creases_beat_the_smooth_surface_of_the_same_curves() {
+    // The can with its rims' second normals dropped (one averaged normal: the blob).
+    let mut smooth = example("can").unwrap();
+    for c in &mut smooth.curves {
+        if c.is_crease() {
+            c.normals = (0..c.points.len()).map(|i| c.mean_normal(i)).collect();
+            c.normals_right.clear();
+        }
+    }
+    let truth = Truth::Can { radius: 1.0, half_height: 1.0 };
+    let s = surface(&smooth, &Options::default().with_vertices(20_000)).unwrap();
+    let e = evaluate(&s.mesh.positions, &s.mesh.faces, None, &s.curve_flags, Reference::Analytic(truth), None);
+    let (rms, _) = distances("can", truth);
+    assert!(rms * 10.0 < e.distance.rms, "crease {rms:.3e}, smooth {:.3e}", e.distance.rms);
+}
+
+#[test]
+fn swapped_sides_and_bad_second_normals_are_input_errors() {
+    let mut net = example("lens").unwrap();
+    let rim = &mut net.curves[0];
+    std::mem::swap(&mut rim.normals, &mut rim.normals_right);
+    let e = surface(&net, &Options::default().with_vertices(2000)).unwrap_err().to_string();
+    assert!(e.contains("swapped") && e.contains("rim"), "{e}");
+
+    let mut net = example("can").unwrap();
+    net.curves[0].normals_right.pop();
+    let e = surface(&net, &Options::default()).unwrap_err().to_string();
+    assert!(e.contains("normals_right") && e.contains("top rim"), "{e}");
+
+    let mut net = example("can").unwrap();
+    net.curves[1].normals_right[5] = DVec3::new(f64::NAN, 0.0, 0.0);
+    let e = surface(&net, &Options::default()).unwrap_err().to_string();
+    assert!(e.contains("sample 5") && e.contains("normals_right"), "{e}");
+
+    let mut net = example("can").unwrap();
+    let t = (net.curves[1].points[4] - net.curves[1].points[2]).normalize();
+    net.curves[1].normals_right[3] = t;
+    let e = surface(&net, &Options::default()).unwrap_err().to_string();
+    assert!(e.contains("sample 3") && e.contains("tangent"), "{e}");
+}
+
+#[test]
+fn fandisk_sampled_with_its_creases_is_within_0_1_percent_rms_and_1_percent_hausdorff() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/meshes/fandisk.off");
+    let m = curvenet::io::read_mesh(&path).unwrap();
+    let opts = SampleOptions { crease_angle: Some(SampleOptions::DEFAULT_CREASE_DEG), ..SampleOptions::default() };
+    let (net, report) = sample_mesh(&m.positions, &m.faces, &opts).unwrap();
+    assert!(report.creases >= 20, "{} creases", report.creases);
+    let s = surface(&net, &Options::default().with_vertices(40_000)).unwrap();
+    let reference = Reference::Mesh { positions: &m.positions, faces: &m.faces };
+    let e = evaluate(&s.mesh.positions, &s.mesh.faces, None, &s.curve_flags, reference, None);
+    let diag = curvenet::geom::Aabb::of(m.positions.iter().copied()).diagonal();
+    let hausdorff = e.hausdorff.unwrap_or(e.distance.max);
+    eprintln!("fandisk: RMS {:.4}%, Hausdorff {:.3}%", 100.0 * e.distance.rms / diag, 100.0 * hausdorff / diag);
+    assert!(e.distance.rms <= 1e-3 * diag && hausdorff <= 1e-2 * diag);
+}
