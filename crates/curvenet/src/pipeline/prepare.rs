@@ -213,6 +213,10 @@ pub(super) fn planar_stage(topo: &Topology, d: f64, timings: &mut Timings) -> Re
     Ok((res, mesh))
 }
 
+/// A tessellation stage's result: the mesh, its cut along the creases, the spacing, the
+/// segments' layout.
+type Stage = (Mesh, Option<Seams>, f64, Vec<[usize; 4]>);
+
 /// Better patching (\[CG\] §6): a coarse first solution (twice the spacing) on planar
 /// projections, then each patch re-tessellated in a conformal flattening of it. `size` (with
 /// the target vertex count), when the spacing was not given: the spacing follows the flattened
@@ -224,7 +228,7 @@ fn conformal_stage(
     timings: &mut Timings,
     st: &mut SolveTimings,
     progress: Progress<'_>,
-) -> Result<(Mesh, Option<Seams>, f64, Vec<[usize; 4]>)> {
+) -> Result<Stage> {
     let (coarse_res, coarse) = match planar_stage(topo, 2.0 * d, timings) {
         Ok(stage) => stage,
         // Twice the spacing is too coarse for this network (its patches overlap, e.g. the

@@ -169,7 +169,7 @@ pub fn check_sides(g: &Graph, patches: &[Patch], labels: &[String]) -> Result<()
             }
         }
     }
-    let mut bad: Vec<(usize, (usize, usize, Option<DVec3>))> = votes.into_iter().filter(|(_, v)| v.1 > v.0).collect();
+    let mut bad: Vec<Votes> = votes.into_iter().filter(|(_, v)| v.1 > v.0).collect();
     bad.sort_by_key(|b| b.0);
     if let Some(&(c, (_, n, Some(at)))) = bad.first() {
         return Err(Error::input(format!(
@@ -184,6 +184,13 @@ pub fn check_sides(g: &Graph, patches: &[Patch], labels: &[String]) -> Result<()
     }
     Ok(())
 }
+
+/// Per curve vertex: the sector of each face around it, and per sector its normal and its
+/// curvature across ([`Side::across`]).
+type Sectors = (Vec<u32>, Vec<(DVec3, f64)>);
+
+/// Per crease curve with swapped-side votes: (curve, (votes as given, votes swapped, a corner)).
+type Votes = (usize, (usize, usize, Option<DVec3>));
 
 /// The mesh cut open along its creases, and the way back (module documentation).
 #[derive(Clone, Debug)]
@@ -217,7 +224,7 @@ impl Seams {
         let normal_of = |p: u32, v: u32| normals.get(&(p, v)).map_or(mesh.curve_normals[v as usize], |s| s.normal);
         let across_of = |p: u32, v: u32| normals.get(&(p, v)).map_or(f64::NAN, |s| s.across);
         // Per curve vertex: per incident face, its sector; per sector, its normal.
-        let sectors: Vec<(Vec<u32>, Vec<(DVec3, f64)>)> = around
+        let sectors: Vec<Sectors> = around
             .par_iter()
             .enumerate()
             .map(|(v, faces)| {
@@ -328,13 +335,7 @@ impl Seams {
 /// (the vertices `v < nc` with two or more `sectors`, and the `copies` after them), `½ Σ |e| ν_e`
 /// over its open edges. Faces run counter-clockwise seen from outside, so an open edge `p → q`
 /// of a face has the face on its left and the outward conormal `(q − p) × n` on its right.
-fn seam_rows(
-    mesh: &Mesh,
-    copies: &[u32],
-    sectors: &[(Vec<u32>, Vec<(DVec3, f64)>)],
-    across: &[f64],
-    nc: usize,
-) -> Vec<(u32, [DVec3; 2])> {
+fn seam_rows(mesh: &Mesh, copies: &[u32], sectors: &[Sectors], across: &[f64], nc: usize) -> Vec<(u32, [DVec3; 2])> {
     let mut seam = vec![false; mesh.num_curve];
     for (v, s) in sectors.iter().enumerate() {
         seam[v] = s.1.len() > 1;
