@@ -124,7 +124,7 @@ pub fn patch_normals(patches: &[Patch], res: &Resampled, sides: &[Vec<[DVec3; 2]
 pub fn check_sides(g: &Graph, patches: &[Patch], labels: &[String]) -> Result<()> {
     // Per crease curve: corners voting for its sides as given, corners voting for swapped.
     let mut votes: HashMap<usize, (usize, usize, Option<DVec3>)> = HashMap::new();
-    let crease = |c: usize| g.curves[c].sides.first().is_some_and(|_| g.curves[c].sides.iter().any(|s| s[0] != s[1]));
+    let crease = |c: usize| g.curves[c].sides.iter().any(|s| s[0] != s[1]);
     let end = |h: super::HalfEdge, at_start: bool| -> [DVec3; 2] {
         let seg = &g.segments[h.segment];
         let c = &g.curves[seg.curve];
@@ -294,9 +294,10 @@ impl Seams {
             let first = (nc + copies.len()) as u32;
             for (k, &f) in around[v].iter().enumerate() {
                 if group[k] > 0 {
-                    let face = &mut out.faces[f as usize];
-                    let slot = face.iter().position(|&x| x == v as u32).expect("the face holds the vertex");
-                    face[slot] = first + group[k] - 1;
+                    // (`around[v]` lists the faces that hold `v`.)
+                    for x in out.faces[f as usize].iter_mut().filter(|x| **x == v as u32) {
+                        *x = first + group[k] - 1;
+                    }
                 }
             }
             for &(n, a) in &normals[1..] {
@@ -322,12 +323,16 @@ impl Seams {
 
     /// Per-vertex values of the cut mesh on the uncut one (a vertex takes its first copy's).
     pub fn merge<T: Clone>(&self, values: &[T]) -> Vec<T> {
-        let n = self.original.iter().map(|&v| v as usize + 1).max().unwrap_or(0);
-        let mut out: Vec<Option<T>> = vec![None; n];
+        // Copies point back to curve vertices that come before them, so the vertices seen for
+        // the first time are the uncut mesh's, in its order.
+        let mut seen = vec![false; self.original.len()];
+        let mut out = Vec::with_capacity(self.original.len());
         for (i, &v) in self.original.iter().enumerate() {
-            out[v as usize].get_or_insert_with(|| values[i].clone());
+            if !std::mem::replace(&mut seen[v as usize], true) {
+                out.push(values[i].clone());
+            }
         }
-        out.into_iter().map(|x| x.expect("every vertex has a copy")).collect()
+        out
     }
 }
 
