@@ -49,12 +49,15 @@ pub struct SampleArgs {
     /// count apart; crossings exact on the mesh, free ends cut back to their last crossing).
     #[arg(long, value_name = "KIND", default_value = "planes", value_parser = ["planes", "principal"])]
     curves: String,
-    /// Find the mesh's creases: edges whose two faces' normals are more than DEG degrees apart
-    /// (30 when given without a value) are sharp; their chains become crease curves (two
-    /// normals per sample, `normals_right`; JSON only) and the other curves end on them.
-    #[arg(long, value_name = "DEG", num_args = 0..=1, require_equals = true,
-          default_missing_value = "30")]
-    crease_angle: Option<f64>,
+    /// The mesh's creases: edges whose two faces' normals are more than DEG degrees apart are
+    /// sharp; their chains become crease curves (two normals per sample, `normals_right`;
+    /// .json only) and the other curves end on them.
+    #[arg(long, value_name = "DEG", default_value_t = SampleOptions::DEFAULT_CREASE_DEG)]
+    crease_angle: f64,
+    /// Find no creases: every curve smooth across (one normal per sample; a mesh with sharp
+    /// edges then comes back rounded).
+    #[arg(long, conflicts_with = "crease_angle")]
+    no_creases: bool,
 }
 
 fn parse_planes(s: &str) -> Result<[usize; 3], Error> {
@@ -68,7 +71,7 @@ fn parse_planes(s: &str) -> Result<[usize; 3], Error> {
 }
 
 pub fn run(a: &SampleArgs) -> Result<(), Error> {
-    curvenet::io::NetworkFormat::from_path(&a.output)?;
+    let format = curvenet::io::NetworkFormat::from_path(&a.output)?;
     let opts = SampleOptions {
         planes: parse_planes(&a.planes)?,
         spacing: a.spacing,
@@ -78,14 +81,26 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
         boundary: !a.no_boundary,
         tilt: a.tilt,
         curves: if a.curves == "principal" { CurveFamily::Principal } else { CurveFamily::Planes },
-        crease_angle: a.crease_angle,
+        crease_angle: (!a.no_creases).then_some(a.crease_angle),
     };
-    if let Some(deg) = a.crease_angle.filter(|d| !(d.is_finite() && *d > 0.0 && *d < 180.0)) {
-        return Err(Error::usage(format!("--crease-angle {deg}: give an angle in degrees between 0 and 180")));
+    if !(a.crease_angle.is_finite() && a.crease_angle > 0.0 && a.crease_angle < 180.0) {
+        return Err(Error::usage(format!(
+            "--crease-angle {}: give an angle in degrees between 0 and 180",
+            a.crease_angle
+        )));
     }
     let mesh = read_mesh(&a.mesh)?;
     let (net, r) = sample_mesh(&mesh.positions, &mesh.faces, &opts)?;
     let net = if a.no_normals { net.without_normals() } else { net };
+    if net.has_creases() && format != curvenet::io::NetworkFormat::Json {
+        return Err(Error::usage(format!(
+            "{}: the mesh has {} crease(s) (sharp edges above --crease-angle {}°), and only .json holds a crease's two \
+             normals; write .json, or give --no-creases for a network of smooth curves",
+            a.output.display(),
+            r.creases,
+            a.crease_angle
+        )));
+    }
     write_network(&a.output, &net)?;
     let mut dropped = String::new();
     if r.dropped_sections + r.dropped_boundary_loops > 0 {
@@ -125,6 +140,20 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
     }
     if r.hairpins > 0 {
         dropped += &format!("; cut {} hairpin(s) where a curve came back along itself", r.hairpins);
+    }
+    if r.folded_normals > 0 {
+        dropped += &format!(
+            "; replaced {} normal(s) from folded mesh faces (within {}° of the curve's direction, or off both neighbours) by the nearest good one on the curve",
+            r.folded_normals,
+            curvenet::sampling::FOLDED_NORMAL_DEG
+        );
+    }
+    if r.smoothed_creases > 0 {
+        dropped += &format!(
+            "; left {} chain(s) of sharp edges smooth (shorter than {} sample spacings, or within the snapping distance of a longer crease)",
+            r.smoothed_creases,
+            curvenet::sampling::MIN_CREASE_SPACINGS
+        );
     }
     if r.pinches > 0 {
         dropped += &format!("; split {} pinch vertex(es) where the mesh boundary touches itself", r.pinches);

@@ -461,3 +461,24 @@ fn networks_without_normals_from_the_command_line() {
     assert!(!Path::new(&p("s.net")).exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn sample_finds_creases_by_default_and_only_json_holds_them() {
+    let mesh = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../data/meshes/fandisk.off");
+    let mesh = mesh.to_str().unwrap();
+    let dir = scratch("fandisk-creases");
+    let (json, obj) = (dir.join("f.json"), dir.join("f.obj"));
+    let o = run(&["sample", mesh, "-o", json.to_str().unwrap(), "--planes", "4"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let net = curvenet::io::read_network(&json).unwrap();
+    assert!(net.has_creases());
+    let o = run(&["sample", mesh, "-o", obj.to_str().unwrap(), "--planes", "4"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--no-creases") && stderr(&o).contains(".json"), "{}", stderr(&o));
+    assert!(!obj.exists(), "nothing written");
+    let o = run(&["sample", mesh, "-o", obj.to_str().unwrap(), "--planes", "4", "--no-creases"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!curvenet::io::read_network(&obj).unwrap().has_creases());
+    let o = run(&["sample", mesh, "-o", json.to_str().unwrap(), "--crease-angle", "NaN"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}

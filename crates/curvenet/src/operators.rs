@@ -283,6 +283,130 @@ pub fn blended_mean_curvature(
         .collect()
 }
 
+/// Faces around each vertex grouped into sectors: faces that share an edge at the vertex
+/// which `sharp` does not call sharp (the two vertices of the edge) are in one sector. Returns
+/// per face corner its sector, and per sector the vertex it belongs to: the first sector of
+/// vertex `v` (in face order) is `v` itself, the others are numbered from `#V` on (as a mesh
+/// cut open along the sharp edges numbers the vertex copies it appends).
+pub fn sectors(num_vertices: usize, faces: &[[u32; 3]], sharp: impl Fn(u32, u32) -> bool) -> (Vec<[u32; 3]>, Vec<u32>) {
+    let mut corners = faces.to_vec();
+    let mut of: Vec<u32> = (0..num_vertices as u32).collect();
+    // The faces around each vertex that touches a sharp edge.
+    let mut on_sharp = vec![false; num_vertices];
+    for f in faces {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            if sharp(a, b) {
+                on_sharp[a as usize] = true;
+                on_sharp[b as usize] = true;
+            }
+        }
+    }
+    let mut around: std::collections::HashMap<u32, Vec<(usize, usize)>> = Default::default();
+    for (fi, f) in faces.iter().enumerate() {
+        for (k, &v) in f.iter().enumerate() {
+            if on_sharp[v as usize] {
+                around.entry(v).or_default().push((fi, k));
+            }
+        }
+    }
+    let mut verts: Vec<u32> = around.keys().copied().collect();
+    verts.sort_unstable();
+    for v in verts {
+        let fs = &around[&v];
+        let mut uf = crate::topology::UnionFind::new(fs.len());
+        // Per other vertex w: the first face (of `fs`) seen with the edge v–w.
+        let mut by_other: std::collections::HashMap<u32, usize> = Default::default();
+        for (j, &(fi, _)) in fs.iter().enumerate() {
+            for &w in faces[fi].iter().filter(|&&w| w != v) {
+                if sharp(v, w) {
+                    continue;
+                }
+                match by_other.get(&w) {
+                    Some(&i) => uf.union(i, j),
+                    None => {
+                        by_other.insert(w, j);
+                    }
+                }
+            }
+        }
+        let mut id_of_root: std::collections::HashMap<usize, u32> = Default::default();
+        id_of_root.insert(uf.find(0), v);
+        for (j, &(fi, k)) in fs.iter().enumerate() {
+            let root = uf.find(j);
+            let id = *id_of_root.entry(root).or_insert_with(|| {
+                of.push(v);
+                (of.len() - 1) as u32
+            });
+            corners[fi][k] = id;
+        }
+    }
+    (corners, of)
+}
+
+/// Normals split at sharp edges, for display (OBJ `f v//vn`, renders): edges between two faces
+/// whose normals are more than `angle` (radians) apart are sharp, and each sector of faces
+/// around a vertex on them ([`sectors`]) gets its own angle-weighted normal, appended after
+/// `normals` (one per vertex, kept for the vertices on no sharp edge). Returns all normals and
+/// per face corner the index of its normal.
+pub fn split_normals(
+    faces: &[[u32; 3]],
+    positions: &[DVec3],
+    normals: &[DVec3],
+    angle: f64,
+) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let face_normal = |f: &[u32; 3]| {
+        let p = f.map(|i| positions[i as usize]);
+        (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero()
+    };
+    // Per undirected edge, the normals of its faces (two for an interior edge).
+    let mut edge: std::collections::HashMap<(u32, u32), Vec<DVec3>> = Default::default();
+    for f in faces {
+        let n = face_normal(f);
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            edge.entry((a.min(b), a.max(b))).or_default().push(n);
+        }
+    }
+    let cos = angle.cos();
+    let sharp =
+        |a: u32, b: u32| edge.get(&(a.min(b), a.max(b))).is_some_and(|ns| ns.len() == 2 && ns[0].dot(ns[1]) < cos);
+    let (corners, of) = sectors(positions.len(), faces, sharp);
+    if of.len() == positions.len() {
+        return (normals.to_vec(), faces.to_vec());
+    }
+    // The sector normals of the vertices on sharp edges (angle-weighted over their faces).
+    let mut split = vec![DVec3::ZERO; of.len()];
+    let mut is_split = vec![false; positions.len()];
+    for &v in &of[positions.len()..] {
+        is_split[v as usize] = true;
+    }
+    for (f, c) in faces.iter().zip(&corners) {
+        let n = face_normal(f);
+        let p = f.map(|i| positions[i as usize]);
+        for k in 0..3 {
+            if is_split[f[k] as usize] {
+                let angle = (p[(k + 1) % 3] - p[k]).angle_between(p[(k + 2) % 3] - p[k]);
+                if angle.is_finite() {
+                    split[c[k] as usize] += angle * n;
+                }
+            }
+        }
+    }
+    let mut out = normals.to_vec();
+    for (s, &v) in of.iter().enumerate() {
+        if is_split[v as usize] {
+            let n = split[s].try_normalize().unwrap_or(normals[v as usize]);
+            if s < positions.len() {
+                out[s] = n;
+            } else {
+                out.push(n);
+            }
+        }
+    }
+    (out, corners)
+}
+
 #[cfg(test)]
 #[path = "tests/operators.rs"]
 mod tests;

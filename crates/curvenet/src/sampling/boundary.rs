@@ -123,10 +123,11 @@ impl BoundaryGrid {
         let h = h.max(f64::MIN_POSITIVE);
         let mut cells: HashMap<(i64, i64, i64), Vec<(u32, u32)>> = HashMap::new();
         let mut along = Vec::new();
-        for (e, fs) in edge_faces {
-            if fs.len() != 1 {
-                continue;
-            }
+        // In a fixed order: the cells' lists decide between coincident edges (the two sides of
+        // a crease the mesh was cut along) only where the normals do not.
+        let mut edges: Vec<(u32, u32)> = edge_faces.iter().filter(|(_, fs)| fs.len() == 1).map(|(e, _)| *e).collect();
+        edges.sort_unstable();
+        for e in &edges {
             let (a, b) = (positions[e.0 as usize], positions[e.1 as usize]);
             crate::geom::segment_cells(a, b, 0.0, h, &mut along);
             for &cell in &along {
@@ -137,7 +138,9 @@ impl BoundaryGrid {
     }
 
     /// The closest boundary edge point within the grid's cell size of `p`: (distance, edge, t).
-    fn closest(&self, positions: &[DVec3], p: DVec3) -> Option<(f64, (u32, u32), f64)> {
+    /// Of coincident edges (the two sides of a crease cut), the one whose vertex normals
+    /// (`normals`) agree best with `n`.
+    fn closest(&self, positions: &[DVec3], normals: &[DVec3], p: DVec3, n: DVec3) -> Option<(f64, (u32, u32), f64)> {
         let h = self.h;
         let c = ((p.x / h).floor() as i64, (p.y / h).floor() as i64, (p.z / h).floor() as i64);
         let mut best: Option<(f64, (u32, u32), f64)> = None;
@@ -149,7 +152,12 @@ impl BoundaryGrid {
                         let d = b - a;
                         let t = ((p - a).dot(d) / d.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
                         let dist = p.distance(a + t * d);
-                        if dist <= h && best.is_none_or(|x| dist < x.0) {
+                        let agree = n.dot(normals[e.0 as usize] + normals[e.1 as usize]);
+                        let better = |x: &(f64, (u32, u32), f64)| {
+                            let theirs = n.dot(normals[x.1 .0 as usize] + normals[x.1 .1 as usize]);
+                            dist < x.0 || (dist == x.0 && agree > theirs)
+                        };
+                        if dist <= h && best.as_ref().is_none_or(better) {
                             best = Some((dist, *e, t));
                         }
                     }
@@ -193,10 +201,12 @@ impl Trimmer {
     /// boundary loop. A section within the band all along is emptied.
     /// Returns the boundary edge of the new end, or `None` when nothing was cut.
     pub(super) fn trim_start(&self, mesh: &Mesh, samples: &mut Vec<Raw>, edge: (u32, u32)) -> Option<(u32, u32)> {
-        let (grid, band, positions) = (&self.grid, self.band, &mesh.positions);
+        let (grid, band, positions, normals) = (&self.grid, self.band, &mesh.positions, &mesh.normals);
         // The end point itself is on the boundary; look at the following samples.
         let mut k = 1;
-        while k < samples.len() && grid.closest(positions, samples[k].p).is_some_and(|c| c.0 < band) {
+        while k < samples.len()
+            && grid.closest(positions, normals, samples[k].p, samples[k].n).is_some_and(|c| c.0 < band)
+        {
             k += 1;
         }
         // Leaves the band within 2.5 band widths of arc: a fair crossing (≥ 24°), keep it.
@@ -207,7 +217,7 @@ impl Trimmer {
             }
             return None;
         }
-        let (_, e, t) = grid.closest(positions, samples[k - 1].p)?;
+        let (_, e, t) = grid.closest(positions, normals, samples[k - 1].p, samples[k - 1].n)?;
         // Across to another boundary loop would span a hole: keep the section as it is.
         if self.loop_of[e.0 as usize] != self.loop_of[edge.0 as usize] {
             return None;
@@ -224,124 +234,3 @@ impl Trimmer {
 #[cfg(test)]
 #[path = "tests/boundary.rs"]
 mod tests;
-
-/// The creases of the mesh ([`super::mesh::cut_creases`]) as crease curves: chains of sharp
-/// edges between their junctions (vertices where other than two sharp edges meet, or where
-/// the chain turns by more than [`CREASE_CORNER_DEG`]), or closed loops. Per sample the
-/// normals of both sides (`samples` the left ones, on the left walking along the chain,
-/// `right` the others); the section ends on its edges (from either side) inserted as nodes in
-/// order along each edge, each counted once in `crossings`.
-pub(super) fn trace_creases(mesh: &Mesh, ends: &EndsOnBoundary, crossings: &mut usize) -> Vec<Traced> {
-    if mesh.sharp.is_empty() {
-        return Vec::new();
-    }
-    // Per original vertex: a position and, per sharp edge (directed a → b), the copies of a
-    // and b in the face on its left and in the face on its right.
-    let mut left: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
-    let mut pos: HashMap<u32, DVec3> = HashMap::new();
-    for f in &mesh.faces {
-        for k in 0..3 {
-            let (x, y) = (f[k], f[(k + 1) % 3]);
-            let (a, b) = (mesh.original[x as usize], mesh.original[y as usize]);
-            if mesh.sharp.contains(&edge_key(a, b)) {
-                left.insert((a, b), (x, y));
-                pos.insert(a, mesh.positions[x as usize]);
-            }
-        }
-    }
-    let mut next: HashMap<u32, Vec<u32>> = HashMap::new();
-    for &(a, b) in &mesh.sharp {
-        next.entry(a).or_default().push(b);
-        next.entry(b).or_default().push(a);
-    }
-    let turn = |a: u32, v: u32, b: u32| {
-        let (u, w) = (pos[&v] - pos[&a], pos[&b] - pos[&v]);
-        u.angle_between(w).to_degrees()
-    };
-    let junction = |v: u32| {
-        let list = &next[&v];
-        list.len() != 2 || turn(list[0], v, list[1]) > CREASE_CORNER_DEG
-    };
-    let mut used: std::collections::HashSet<(u32, u32)> = Default::default();
-    let mut chains: Vec<(Vec<u32>, bool)> = Vec::new();
-    let mut starts: Vec<u32> = next.keys().copied().collect();
-    starts.sort_unstable();
-    // Open chains from the junctions, then closed loops from any vertex left.
-    for pass in 0..2 {
-        for &s in &starts {
-            if pass == 0 && !junction(s) {
-                continue;
-            }
-            let mut outs = next[&s].clone();
-            outs.sort_unstable();
-            for first in outs {
-                if used.contains(&edge_key(s, first)) {
-                    continue;
-                }
-                let mut chain = vec![s];
-                let (mut prev, mut v) = (s, first);
-                used.insert(edge_key(s, v));
-                let closed = loop {
-                    chain.push(v);
-                    if v == s {
-                        chain.pop();
-                        break true;
-                    }
-                    if junction(v) {
-                        break false;
-                    }
-                    let Some(&w) = next[&v].iter().find(|&&w| w != prev && !used.contains(&edge_key(v, w))) else {
-                        break false;
-                    };
-                    used.insert(edge_key(v, w));
-                    prev = v;
-                    v = w;
-                };
-                chains.push((chain, closed));
-            }
-        }
-    }
-    let mut out = Vec::new();
-    for (chain, closed) in chains {
-        let m = chain.len();
-        let edges = if closed { m } else { m - 1 };
-        let (mut samples, mut right) = (Vec::new(), Vec::new());
-        for k in 0..edges {
-            let (a, b) = (chain[k], chain[(k + 1) % m]);
-            let (Some(&(la, lb)), Some(&(rb, ra))) = (left.get(&(a, b)), left.get(&(b, a))) else { continue };
-            let n = |x: u32| mesh.normals[x as usize];
-            samples.push(Raw { p: pos[&a], n: n(la), node: k == 0 && !closed });
-            right.push(n(ra));
-            let (pa, pb) = (pos[&a], pos[&b]);
-            let d = pb - pa;
-            let mut xs: Vec<(f64, DVec3)> = [edge_key(la, lb), edge_key(ra, rb)]
-                .iter()
-                .filter_map(|e| ends.get(e))
-                .flatten()
-                .map(|r| ((r.p - pa).dot(d) / d.length_squared().max(f64::MIN_POSITIVE), r.p))
-                .collect();
-            xs.sort_by(|x, y| x.0.total_cmp(&y.0));
-            xs.dedup_by(|x, y| x.1.distance(y.1) <= 1e-9 * d.length());
-            for (t, p) in xs {
-                let t = t.clamp(0.0, 1.0);
-                samples.push(Raw { p, n: n(la).lerp(n(lb), t), node: true });
-                right.push(n(ra).lerp(n(rb), t));
-                *crossings += 1;
-            }
-            if k + 1 == edges && !closed {
-                samples.push(Raw { p: pb, n: n(lb), node: true });
-                right.push(n(rb));
-            }
-        }
-        if samples.len() < if closed { 3 } else { 2 } {
-            continue;
-        }
-        let name = format!("crease #{}", out.len());
-        out.push(Traced { plane: None, samples, closed, boundary: false, name, cut: false, right });
-    }
-    out
-}
-
-/// Sharp edges that turn by more than this many degrees at a vertex end their crease curves
-/// there (the curves meet at a node): a spline through a corner would round it.
-pub const CREASE_CORNER_DEG: f64 = 40.0;

@@ -3,6 +3,7 @@
 //! ([`split_pinches`]); then its angle-weighted vertex normals ([`crate::operators::angle_weighted_normals`]) and the
 //! faces around each edge, which must be at most two (a 2-manifold with boundary).
 
+use super::creases;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec3};
 use std::collections::HashMap;
@@ -21,7 +22,7 @@ pub(super) struct Mesh {
     /// The faces around each edge ([`EdgeFaces`]).
     pub(super) edge_faces: EdgeFaces,
     /// Per vertex: the vertex of the repaired mesh before the cut along its creases
-    /// ([`cut_creases`]) it is a copy of.
+    /// ([`super::creases::cut_creases`]) it is a copy of.
     pub(super) original: Vec<u32>,
     /// The sharp edges ([`edge_key`] of `original` vertices) the mesh was cut along.
     pub(super) sharp: std::collections::HashSet<(u32, u32)>,
@@ -33,6 +34,8 @@ pub(super) struct Repairs {
     pub(super) zipped: usize,
     /// Pinch vertices split ([`split_pinches`]).
     pub(super) pinches: usize,
+    /// Chains of sharp edges left smooth ([`super::creases::kept_creases`]).
+    pub(super) smoothed_creases: usize,
 }
 
 /// Checks the input mesh: faces, vertex indices in range, finite coordinates, non-zero extent.
@@ -71,27 +74,34 @@ impl Mesh {
     /// [`split_pinches`]); with its vertex normals and edge adjacency.
     ///
     /// Errors: [`Error::Input`] for an edge shared by more than two faces (naming the edge).
-    /// With `crease_angle` (radians), the repaired mesh is then cut open along its sharp edges
-    /// ([`cut_creases`]): its vertex normals are those of each side.
+    /// With `creases`, the repaired mesh is then cut open along its sharp edges
+    /// (those [`super::creases::kept_creases`] keeps, [`super::creases::cut_creases`]): its
+    /// vertex normals are those of each side.
     pub(super) fn repaired(
         positions: &[DVec3],
         faces: &[[u32; 3]],
         near: f64,
-        crease_angle: Option<f64>,
+        creases: Option<creases::CreaseCut>,
     ) -> Result<(Mesh, Repairs)> {
         let mut welded = weld(positions, faces);
         let mut moved = positions.to_vec();
         let zipped = zip_cracks(&mut moved, &mut welded, near);
         let pinches = split_pinches(&mut moved, &mut welded, near);
         check_manifold(&edge_faces(&welded), positions.len())?;
-        let (original, sharp) = match crease_angle {
-            Some(angle) => cut_creases(&mut moved, &mut welded, angle),
+        let mut smoothed_creases = 0;
+        let (original, sharp) = match creases {
+            Some(c) => {
+                let sharp = creases::sharp_edges(&moved, &welded, c.angle);
+                let (kept, smoothed) = creases::kept_creases(&moved, sharp, c.min_len, near, c.gap);
+                smoothed_creases = smoothed;
+                creases::cut_creases(&mut moved, &mut welded, kept)
+            }
             None => ((0..moved.len() as u32).collect(), Default::default()),
         };
         let normals = crate::operators::angle_weighted_normals(&welded, &moved);
         let edge_faces = edge_faces(&welded);
         let mesh = Mesh { positions: moved, faces: welded, normals, edge_faces, original, sharp };
-        Ok((mesh, Repairs { zipped, pinches }))
+        Ok((mesh, Repairs { zipped, pinches, smoothed_creases }))
     }
 
     /// Whether the edge from `a` to `b` lies on a crease the mesh was cut along.
@@ -128,7 +138,7 @@ fn weld(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<[u32; 3]> {
 }
 
 /// The faces around each undirected edge of `faces`.
-fn edge_faces(faces: &[[u32; 3]]) -> EdgeFaces {
+pub(super) fn edge_faces(faces: &[[u32; 3]]) -> EdgeFaces {
     let mut edge_faces: EdgeFaces = HashMap::new();
     for (fi, f) in faces.iter().enumerate() {
         for k in 0..3 {
@@ -321,96 +331,4 @@ pub fn split_pinches(positions: &mut Vec<DVec3>, faces: &mut [[u32; 3]], offset:
         }
     }
     split
-}
-
-/// Cuts the mesh open along its sharp edges: edges between two faces whose normals are more
-/// than `angle` (radians) apart (the mesh's dihedral-angle features, docs/design.md §13).
-/// At every vertex the faces around it fall into sectors separated by sharp edges; each
-/// sector after the first gets a copy of the vertex (appended). Returns per vertex the vertex
-/// it is a copy of (itself for the originals) and the sharp edges ([`edge_key`]).
-pub(crate) fn cut_creases(
-    positions: &mut Vec<DVec3>,
-    faces: &mut [[u32; 3]],
-    angle: f64,
-) -> (Vec<u32>, std::collections::HashSet<(u32, u32)>) {
-    let n = positions.len();
-    let normal = |f: &[u32; 3]| {
-        let p = |k: usize| positions[f[k] as usize];
-        (p(1) - p(0)).cross(p(2) - p(0)).normalize_or_zero()
-    };
-    let edges = edge_faces(faces);
-    let cos = angle.cos();
-    // (Sharp edges that touch the mesh's own boundary are left smooth: the boundary loops stay
-    // apart from the creases, which end one edge short of the boundary.)
-    let mut on_boundary = vec![false; n];
-    for (e, fs) in &edges {
-        if fs.len() == 1 {
-            on_boundary[e.0 as usize] = true;
-            on_boundary[e.1 as usize] = true;
-        }
-    }
-    let sharp: std::collections::HashSet<(u32, u32)> = edges
-        .iter()
-        .filter(|(e, fs)| {
-            fs.len() == 2
-                && !on_boundary[e.0 as usize]
-                && !on_boundary[e.1 as usize]
-                && normal(&faces[fs[0]]).dot(normal(&faces[fs[1]])) < cos
-        })
-        .map(|(e, _)| *e)
-        .collect();
-    let mut original: Vec<u32> = (0..n as u32).collect();
-    if sharp.is_empty() {
-        return (original, sharp);
-    }
-    let mut on_sharp: Vec<u32> =
-        sharp.iter().flat_map(|&(a, b)| [a, b]).collect::<std::collections::HashSet<u32>>().into_iter().collect();
-    on_sharp.sort_unstable();
-    let mut around: HashMap<u32, Vec<usize>> = on_sharp.iter().map(|&v| (v, Vec::new())).collect();
-    for (fi, f) in faces.iter().enumerate() {
-        for &v in f {
-            if let Some(list) = around.get_mut(&v) {
-                list.push(fi);
-            }
-        }
-    }
-    for v in on_sharp {
-        let fs = &around[&v];
-        let mut uf = crate::topology::UnionFind::new(fs.len());
-        let mut by_other: HashMap<u32, usize> = HashMap::new();
-        for (k, &fi) in fs.iter().enumerate() {
-            for &w in faces[fi].iter().filter(|&&w| w != v) {
-                // (`w` may already be a copy: the sharp edges are keyed by the originals.)
-                if sharp.contains(&edge_key(v, original[w as usize])) {
-                    continue;
-                }
-                match by_other.get(&w) {
-                    Some(&j) => uf.union(j, k),
-                    None => {
-                        by_other.insert(w, k);
-                    }
-                }
-            }
-        }
-        let mut copy_of_root: HashMap<usize, u32> = HashMap::new();
-        let first_root = uf.find(0);
-        copy_of_root.insert(first_root, v);
-        for k in 0..fs.len() {
-            let r = uf.find(k);
-            let id = *copy_of_root.entry(r).or_insert_with(|| {
-                positions.push(positions[v as usize]);
-                original.push(v);
-                (positions.len() - 1) as u32
-            });
-            if id != v {
-                let f = &mut faces[fs[k]];
-                for x in f.iter_mut() {
-                    if *x == v {
-                        *x = id;
-                    }
-                }
-            }
-        }
-    }
-    (original, sharp)
 }

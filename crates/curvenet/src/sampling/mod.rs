@@ -19,7 +19,9 @@
 //! The stages, one file each, in the order of the data:
 //!
 //! 1. `mesh`: the input checked and repaired (welded, cracks zipped, pinches split), vertex
-//!    normals and edge adjacency.
+//!    normals and edge adjacency; with creases, `creases`: the sharp edges found and chained,
+//!    the mesh cut open along them (each side its own vertex normals; after stage 4 the
+//!    chains become crease curves).
 //! 2. `planes`, `sections`: the section planes placed away from vertices and moved off bad
 //!    crossings; each face cut by each plane, the cuts chained into polylines, ends that run
 //!    along the boundary cut back.
@@ -40,6 +42,7 @@ use crate::network::Network;
 use std::collections::HashMap;
 
 mod boundary;
+mod creases;
 mod cross_field;
 mod crossings;
 mod cut;
@@ -51,10 +54,11 @@ pub mod principal;
 mod sections;
 mod streamlines;
 
+pub use creases::{CREASE_CORNER_DEG, MIN_CREASE_SPACINGS};
 pub use cut::SHARP_TURN_DEG;
 use mesh::Mesh;
 pub use mesh::{split_pinches, zip_cracks};
-pub use network::{remove_hairpins, CORNER_DEG};
+pub use network::{remove_hairpins, CORNER_DEG, FOLDED_NORMAL_DEG};
 pub use planes::{section_directions, MAX_PLANE_MOVES, MIN_CROSSING_ANGLE_DEG};
 
 /// Distance between the principal curves ([`CurveFamily::Principal`]) as a fraction of the
@@ -94,9 +98,8 @@ pub struct SampleOptions {
     pub curves: CurveFamily,
     /// `--crease-angle DEG`: mesh edges whose faces' normals are more than this many degrees
     /// apart are sharp; their chains become crease curves of the network (with the normals of
-    /// both sides, docs/design.md §13) and the other curves end on them. Default `None` (no
-    /// creases) until the beetle samples cleanly with them (design.md §13, known bugs);
-    /// [`SampleOptions::DEFAULT_CREASE_DEG`] is the angle to give.
+    /// both sides, docs/design.md §13) and the other curves end on them. Default
+    /// [`SampleOptions::DEFAULT_CREASE_DEG`]; `None` (`--no-creases`): every curve smooth.
     pub crease_angle: Option<f64>,
 }
 
@@ -124,7 +127,7 @@ impl SampleOptions {
     pub const SNAP_SPACING: f64 = 0.12;
     /// Default `tilt` in degrees.
     pub const DEFAULT_TILT_DEG: f64 = 20.0;
-    /// The `crease_angle` to give, in degrees (`--crease-angle` without a value).
+    /// Default `crease_angle` in degrees.
     pub const DEFAULT_CREASE_DEG: f64 = 30.0;
 }
 
@@ -139,7 +142,7 @@ impl Default for SampleOptions {
             boundary: true,
             tilt: Self::DEFAULT_TILT_DEG,
             curves: CurveFamily::Planes,
-            crease_angle: None,
+            crease_angle: Some(Self::DEFAULT_CREASE_DEG),
         }
     }
 }
@@ -187,6 +190,12 @@ pub struct SampleReport {
     pub single_contact_holes: usize,
     /// Boundary loops left out because they are smaller than 3 sample spacings across.
     pub small_holes: usize,
+    /// Sample normals along their curve (within [`FOLDED_NORMAL_DEG`]: a folded mesh
+    /// face) replaced by the nearest good one on the curve.
+    pub folded_normals: usize,
+    /// Chains of sharp edges left smooth: shorter than [`MIN_CREASE_SPACINGS`] sample
+    /// spacings, or running within the snapping distance of a longer one.
+    pub smoothed_creases: usize,
 }
 
 /// A sample of a polyline before resampling: position, normal, and whether it is a crossing
@@ -215,7 +224,7 @@ struct Traced {
     name: String,
     /// A piece of a section cut at a bad spot ([`cut::cut_at_spots`]): it may end at crossings.
     cut: bool,
-    /// A crease curve ([`boundary::trace_creases`]): the normals of the surface on its right,
+    /// A crease curve ([`creases::trace_creases`]): the normals of the surface on its right,
     /// per sample (`samples` hold the left ones). Empty for the other curves.
     right: Vec<DVec3>,
 }
@@ -297,6 +306,9 @@ fn check_options(opts: &SampleOptions) -> Result<()> {
     if !(opts.noise.is_finite() && opts.noise >= 0.0) {
         return Err(Error::usage(format!("`noise` {} is not a non-negative number", opts.noise)));
     }
+    if let Some(deg) = opts.crease_angle.filter(|d| !(d.is_finite() && *d > 0.0 && *d < 180.0)) {
+        return Err(Error::usage(format!("`crease_angle` {deg}: give an angle in degrees between 0 and 180")));
+    }
     Ok(())
 }
 
@@ -314,7 +326,16 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     let bbox = mesh::check_mesh(positions, faces)?;
     let scales = Scales::new(bbox, opts)?;
     check_options(opts)?;
-    let (mesh, repairs) = Mesh::repaired(positions, faces, scales.near, opts.crease_angle.map(f64::to_radians))?;
+    let (mesh, repairs) = Mesh::repaired(
+        positions,
+        faces,
+        scales.near,
+        opts.crease_angle.map(|deg| creases::CreaseCut {
+            angle: deg.to_radians(),
+            min_len: MIN_CREASE_SPACINGS * scales.spacing,
+            gap: scales.gap,
+        }),
+    )?;
     let principal = opts.curves == CurveFamily::Principal;
     let traces = if principal {
         principal::trace_principal(&mesh, opts, &scales)
@@ -326,7 +347,7 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     if opts.boundary {
         boundary_loops = boundary::trace_boundary(&mesh, &traces.ends_on_boundary, &mut crossings);
     }
-    let creases = boundary::trace_creases(&mesh, &traces.ends_on_boundary, &mut crossings);
+    let creases = creases::trace_creases(&mesh, &traces.ends_on_boundary, &mut crossings);
     let has_creases = !creases.is_empty();
     boundary_loops.extend(creases);
     let mut traced = traces.traced;
@@ -336,6 +357,7 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         crossings,
         pinches: repairs.pinches,
         zipped: repairs.zipped,
+        smoothed_creases: repairs.smoothed_creases,
         unresolved: traces.unresolved,
         trimmed: traces.trimmed,
         ..Default::default()

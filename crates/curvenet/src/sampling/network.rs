@@ -39,6 +39,9 @@ pub(super) fn assemble(
         if normals_right.is_empty() {
             report.hairpins += remove_hairpins(&mut points, &mut normals, t.closed, scales.near);
         }
+        let mut normals_right = normals_right;
+        report.folded_normals += repair_folded_normals(&points, &mut normals, t.closed);
+        report.folded_normals += repair_folded_normals(&points, &mut normals_right, t.closed);
         let need = if t.closed { 3 } else { 2 };
         if points.len() < need {
             continue;
@@ -69,6 +72,56 @@ pub(super) fn assemble(
         net = net.perturbed(opts.noise, opts.seed);
     }
     Ok(net)
+}
+
+/// A sample normal within this many degrees of the curve's direction, or more than this many
+/// degrees from the normals of both its neighbours while they are less than half as far from
+/// each other, comes from a folded mesh face (a flap or sliver, often on a scanned mesh's
+/// boundary): a surface's normal is across every curve on it and turns smoothly away from
+/// creases. [`repair_folded_normals`] replaces it.
+pub const FOLDED_NORMAL_DEG: f64 = 45.0;
+
+/// Replaces each normal of `normals` (empty: nothing to do) that comes from a folded face
+/// ([`FOLDED_NORMAL_DEG`]) by the normal of the nearest sample along the polyline that does
+/// not (none: left as it is, the network's validation names it). Returns the number replaced.
+pub(super) fn repair_folded_normals(points: &[DVec3], normals: &mut [DVec3], closed: bool) -> usize {
+    let m = points.len();
+    if normals.len() != m || m < 2 {
+        return 0;
+    }
+    let limit = FOLDED_NORMAL_DEG.to_radians();
+    // The neighbours of sample i (none past the ends of an open polyline).
+    let prev = |i: usize| if i > 0 { Some(i - 1) } else { closed.then_some(m - 1) };
+    let next = |i: usize| if i + 1 < m { Some(i + 1) } else { closed.then_some(0) };
+    let unit: Vec<DVec3> = normals.iter().map(|n| n.normalize_or_zero()).collect();
+    let bad: Vec<bool> = (0..m)
+        .map(|i| {
+            let (a, b) = (prev(i).unwrap_or(i), next(i).unwrap_or(i));
+            let tangent = (points[b] - points[a]).normalize_or_zero();
+            let spike = match (prev(i), next(i)) {
+                (Some(a), Some(b)) => {
+                    let off = unit[i].angle_between(unit[a]).min(unit[i].angle_between(unit[b]));
+                    off > limit && unit[a].angle_between(unit[b]) < 0.5 * off
+                }
+                _ => false,
+            };
+            unit[i] == DVec3::ZERO || unit[i].dot(tangent).abs() > limit.cos() || spike
+        })
+        .collect();
+    let mut replaced = 0;
+    for i in (0..m).filter(|&i| bad[i]) {
+        // The nearest good sample, looking both ways (around a closed polyline).
+        let near = (1..m).find_map(|d| {
+            let back = if i >= d { Some(i - d) } else { closed.then(|| i + m - d) };
+            let ahead = if i + d < m { Some(i + d) } else { closed.then(|| (i + d) % m) };
+            [back, ahead].into_iter().flatten().find(|&j| !bad[j])
+        });
+        if let Some(j) = near {
+            normals[i] = normals[j];
+            replaced += 1;
+        }
+    }
+    replaced
 }
 
 /// Resamples a polyline at about `spacing` by arc length (positions on the polyline, so on

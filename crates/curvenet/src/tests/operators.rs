@@ -157,3 +157,48 @@ fn degenerate_triangles_give_finite_clamped_terms() {
     let ops = cotan_operators(&m, Metric::Planar, &m.positions);
     assert!(ops.ls.values.iter().all(|x| x.is_finite()) && ops.mass.iter().all(|x| x.is_finite()));
 }
+
+/// The unit cube, two triangles per side, counter-clockwise seen from outside.
+fn cube() -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let p: Vec<DVec3> = (0..8).map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, (i >> 2) as f64)).collect();
+    let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    (p, quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect())
+}
+
+#[test]
+fn a_cube_split_at_its_edges_has_three_sectors_per_corner_with_the_face_normals() {
+    let (p, f) = cube();
+    let is_edge = |a: u32, b: u32| {
+        (p[a as usize] - p[b as usize]).abs().max_element() > 0.5 && {
+            // A cube edge changes one coordinate; a face diagonal two.
+            let d = (p[a as usize] - p[b as usize]).abs();
+            (d.x + d.y + d.z - 1.0).abs() < 1e-12
+        }
+    };
+    let (corners, of) = sectors(p.len(), &f, is_edge);
+    assert_eq!(of.len(), 24, "3 sectors at each of the 8 corners");
+    // The two triangles of one side share their corners' sectors; different sides do not.
+    for (fi, c) in corners.iter().enumerate() {
+        for (k, &s) in c.iter().enumerate() {
+            assert_eq!(of[s as usize], f[fi][k]);
+        }
+    }
+    assert_eq!(corners[0][0], corners[1][0]);
+    assert_ne!(corners[0][0], corners[4][0]);
+    // Nothing sharp: one sector per vertex, the faces unchanged.
+    let (same, of) = sectors(p.len(), &f, |_, _| false);
+    assert_eq!((same, of.len()), (f.clone(), 8));
+
+    let smooth = angle_weighted_normals(&f, &p);
+    let (normals, corners) = split_normals(&f, &p, &smooth, 30f64.to_radians());
+    for (fi, c) in corners.iter().enumerate() {
+        let q = f[fi].map(|i| p[i as usize]);
+        let face = (q[1] - q[0]).cross(q[2] - q[0]).normalize();
+        for &s in c {
+            assert!(normals[s as usize].distance(face) < 1e-12, "face {fi}: {} vs {face}", normals[s as usize]);
+        }
+    }
+    // Above 90°, nothing is split: the corners keep the smooth normals.
+    let (kept, corners) = split_normals(&f, &p, &smooth, 100f64.to_radians());
+    assert_eq!((kept, corners), (smooth, f));
+}

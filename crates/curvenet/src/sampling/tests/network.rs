@@ -106,3 +106,20 @@ fn the_network_needs_a_crossing() {
     let net = assemble(vec![section()], Vec::new(), &noisy, &scales, &mut report).unwrap();
     assert!(net.curves[0].points.iter().any(|q| q.y != 0.0));
 }
+
+#[test]
+fn normals_of_folded_faces_are_replaced_and_crease_steps_kept() {
+    let points: Vec<DVec3> = (0..6).map(|i| DVec3::new(i as f64, 0.0, 0.0)).collect();
+    let up = DVec3::Z;
+    // A spike at 2 (90° off both neighbours, which agree) and a normal along the curve at 5.
+    let mut normals = vec![up, up, DVec3::Y, up, up, DVec3::new(1.0, 0.0, 0.1).normalize()];
+    assert_eq!(repair_folded_normals(&points, &mut normals, false), 2);
+    assert!(normals.iter().all(|&n| n == up), "{normals:?}");
+    // A step across a crease (the normal turns by 60° once) is no fold.
+    let turned = DVec3::new(0.0, 60f64.to_radians().sin(), 60f64.to_radians().cos());
+    let mut step = vec![up, up, up, turned, turned, turned];
+    assert_eq!(repair_folded_normals(&points, &mut step, false), 0);
+    // Nothing good to copy: left for the validation to name.
+    let mut all_bad = vec![DVec3::X; 6];
+    assert_eq!(repair_folded_normals(&points, &mut all_bad, false), 0);
+}
