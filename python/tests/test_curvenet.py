@@ -313,3 +313,45 @@ def test_networks_without_normals_are_inferred():
     assert info["inferred_normals"] is None
     _, _, info = curvenet.surface(net, vertices=4000, preset="fast", infer_normals=True)
     assert info["inferred_normals"]["curves"] == 3
+
+
+def test_crease_curves_as_five_tuples(tmp_path):
+    """The can's rims carry a second normal per sample (a fifth tuple element); rebuilt from
+    tuples it surfaces exactly as the bundled example, dropping the second normals gives the
+    rounded blob, and bad `normals_right` are errors naming curve and sample."""
+    can = curvenet.example("can")
+    right = can.normals_right
+    creases = [i for i, r in enumerate(right) if r is not None]
+    assert len(creases) == 2, "two crease rims"
+    tuples = [(p, n, c, b, r) for (p, n, c, b), r in zip(can.curves, right)]
+    rebuilt = curvenet.Network(tuples)
+    assert all((r is None) == (q is None) for r, q in zip(rebuilt.normals_right, right))
+    V1, F1, _ = curvenet.surface(can, vertices=4000)
+    V2, F2, _ = curvenet.surface(rebuilt, vertices=4000)
+    np.testing.assert_array_equal(F1, F2)
+    np.testing.assert_array_equal(V1, V2)
+    # The lids are flat (z = ±1 within the solve's accuracy) ...
+    lid = np.abs(V1[:, 2]) > 0.999
+    assert lid.sum() > 100 and np.all(np.abs(np.abs(V1[lid, 2]) - 1) < 1e-2)
+    # ... and with one (averaged) normal per rim sample they bulge.
+    smooth = curvenet.Network([(p, n, c, b) for p, n, c, b, _ in tuples])
+    V3, _, _ = curvenet.surface(smooth, vertices=4000)
+    assert np.abs(V3[:, 2]).max() > 1.02 or np.abs(np.hypot(V3[:, 0], V3[:, 1])).max() > 1.02
+    # A JSON round trip keeps the second normals.
+    path = tmp_path / "can.json"
+    rebuilt.write(str(path))
+    back = curvenet.read_network(str(path)).normals_right
+    for r, q in zip(back, right):
+        assert (r is None) == (q is None) and (r is None or np.allclose(r, q))
+    # A second normal along the curve: an error naming curve and sample.
+    p, n, c, b, r = tuples[creases[0]]
+    bad = r.copy()
+    bad[3] = p[4] - p[2]
+    broken = list(tuples)
+    broken[creases[0]] = (p, n, c, b, bad)
+    with pytest.raises(ValueError, match=f"curve {creases[0]}, sample 3"):
+        curvenet.surface(curvenet.Network(broken), vertices=2000)
+    # Of the wrong length: also an error.
+    broken[creases[0]] = (p, n, c, b, r[:-1])
+    with pytest.raises(ValueError, match=f"curve {creases[0]}"):
+        curvenet.surface(curvenet.Network(broken), vertices=2000)

@@ -126,10 +126,33 @@ pub fn run(a: &FiguresArgs) -> Result<(), Error> {
         panel(&g, Coloring::Isophotes, oblique, "globe: isophotes".into(), None),
     ];
     write(&a.out, "globe.png", render_panels(&panels, 2, 1400, 700)?)?;
+    crease_figure(&a.out, a.vertices)?;
     real_mesh_figure(&a.out, &a.data, a.vertices)?;
     sketch_figure(&a.out, &a.sketches, a.vertices)?;
     out!("done in {:.1} s", start.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// Creases (docs/design.md §13): the lens and the can kept sharp, and the can with one
+/// averaged normal per rim sample instead (the blob of the issue), shaded and in isophotes.
+fn crease_figure(dir: &Path, vertices: usize) -> Result<(), Error> {
+    let default = Options::default().with_vertices(vertices);
+    let can = network("can")?;
+    let mut averaged = can.clone();
+    for c in averaged.curves.iter_mut().filter(|c| c.is_crease()) {
+        c.normals = (0..c.points.len()).map(|i| c.mean_normal(i)).collect();
+        c.normals_right.clear();
+    }
+    let scenes = [
+        ("lens: 60 deg crease", scene(&network("lens")?, &default)?),
+        ("can: 90 deg rims", scene(&can, &default)?),
+        ("can, rims with one averaged normal", scene(&averaged, &default)?),
+    ];
+    let view = View { azimuth: 30.0, elevation: 25.0, zoom: 1.0 };
+    let mut panels: Vec<Panel> =
+        scenes.iter().map(|(n, s)| panel(s, Coloring::Shaded, view, n.to_string(), None)).collect();
+    panels.extend(scenes.iter().map(|(_, s)| panel(s, Coloring::Isophotes, view, "isophotes".into(), None)));
+    write(dir, "creases.png", render_panels(&panels, 3, 1800, 1100)?)
 }
 
 /// Networks sampled on real meshes (`curvenet sample`: 8 plane sections per axis, crossings

@@ -344,6 +344,11 @@ pub fn sectors(num_vertices: usize, faces: &[[u32; 3]], sharp: impl Fn(u32, u32)
     (corners, of)
 }
 
+/// The dihedral angle (degrees) above which display normals are split ([`split_normals`]): the
+/// OBJ writer's per-corner normals, renders and the viewer shade such edges sharp. Blender's
+/// default auto-smooth angle; a crease found by `curvenet sample` is at least this sharp.
+pub const SHARP_SHADING_DEG: f64 = 30.0;
+
 /// Normals split at sharp edges, for display (OBJ `f v//vn`, renders): edges between two faces
 /// whose normals are more than `angle` (radians) apart are sharp, and each sector of faces
 /// around a vertex on them ([`sectors`]) gets its own angle-weighted normal, appended after

@@ -111,3 +111,49 @@ fn fandisk_sampled_with_its_creases_is_within_0_1_percent_rms_and_1_percent_haus
     eprintln!("fandisk: RMS {:.4}%, Hausdorff {:.3}%", 100.0 * e.distance.rms / diag, 100.0 * hausdorff / diag);
     assert!(e.distance.rms <= 1e-3 * diag && hausdorff <= 1e-2 * diag);
 }
+
+/// The can's rims are shaded sharp: its OBJ has per-corner normals split there (and reads back
+/// with one normal per vertex), and a render's scene splits its vertices there.
+#[test]
+fn creases_are_split_in_obj_normals_and_renders() {
+    let s = surface(&example("can").unwrap(), &Options::default().with_vertices(4000)).unwrap();
+    let dir = std::env::temp_dir().join(format!("curvenet-creases-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("can.obj");
+    let data = curvenet::io::MeshData {
+        positions: &s.mesh.positions,
+        faces: &s.mesh.faces,
+        normals: Some(&s.normals),
+        mean_curvature: None,
+        curve_vertex: None,
+        propagated_normals: None,
+    };
+    curvenet::io::write_mesh(&path, data).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let (v, vn) =
+        (text.lines().filter(|l| l.starts_with("v ")).count(), text.lines().filter(|l| l.starts_with("vn ")).count());
+    assert_eq!(v, s.mesh.positions.len());
+    // Every rim vertex has a normal for the side and one for the lid (two rims of ≥ 32 vertices).
+    assert!(vn >= v + 64, "{vn} normals for {v} vertices");
+    let back = curvenet::io::read_mesh(&path).unwrap();
+    assert_eq!(back.positions.len(), v);
+    assert_eq!(back.normals.as_ref().map(Vec::len), Some(v), "one normal per vertex read back");
+    let _ = std::fs::remove_dir_all(&dir);
+
+    // The render's scene: split copies at the rims, whose normals are the lid's (±z) and the
+    // side's (radial) — 90° apart — where the surface's own normal there is in between.
+    let scene = curvenet::render::Scene::from_surface(&s);
+    assert!(scene.positions.len() >= v + 64);
+    assert_eq!(scene.mean_curvature.len(), scene.positions.len());
+    let on_rim = |p: DVec3| (p.z.abs() - 1.0).abs() < 1e-9 && (p.truncate().length() - 1.0).abs() < 1e-6;
+    let rim: Vec<usize> = (0..v).filter(|&i| on_rim(s.mesh.positions[i])).collect();
+    assert!(rim.len() >= 64, "{} rim vertices", rim.len());
+    for &i in &rim {
+        let p = s.mesh.positions[i];
+        let normals: Vec<DVec3> =
+            (0..scene.positions.len()).filter(|&j| scene.positions[j] == p).map(|j| scene.normals[j]).collect();
+        let lid = normals.iter().any(|n| n.z.abs() > 0.95);
+        let side = normals.iter().any(|n| n.z.abs() < 0.3);
+        assert!(lid && side, "rim vertex {i} at {p}: normals {normals:?}");
+    }
+}

@@ -202,24 +202,34 @@ fn put_vec3(buf: &mut Vec<u8>, head: &[u8], p: DVec3) {
     buf.push(b'\n');
 }
 
+/// OBJ with per-corner normals (`f v//vn`): the vertex normals, split where two faces' normals
+/// are more than [`crate::operators::SHARP_SHADING_DEG`] apart so that creases look sharp in
+/// Blender or MeshLab ([`crate::operators::split_normals`]; the positions stay shared).
 fn write_obj(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
     writeln!(w, "# written by curvenet: {} vertices, {} faces", m.positions.len(), m.faces.len())?;
+    let angle = crate::operators::SHARP_SHADING_DEG.to_radians();
+    let split = m.normals.map(|ns| crate::operators::split_normals(m.faces, m.positions, ns, angle));
+    let (normals, corners): (&[DVec3], &[[u32; 3]]) = match &split {
+        Some((ns, cs)) => (ns, cs),
+        None => (&[], m.faces),
+    };
     // One stream of records: the positions, the normals, then the faces.
     let n = m.positions.len();
-    let normals = m.normals.map_or(0, |ns| ns.len());
-    write_records(w, n + normals + m.faces.len(), |i, b| {
+    let nn = normals.len();
+    write_records(w, n + nn + m.faces.len(), |i, b| {
         if i < n {
             put_vec3(b, b"v ", m.positions[i]);
-        } else if let Some(ns) = m.normals.filter(|_| i < n + normals) {
-            put_vec3(b, b"vn ", ns[i - n]);
+        } else if i < n + nn {
+            put_vec3(b, b"vn ", normals[i - n]);
         } else {
             b.push(b'f');
-            for &v in &m.faces[i - n - normals] {
+            let fi = i - n - nn;
+            for (k, &v) in m.faces[fi].iter().enumerate() {
                 b.push(b' ');
                 put_u32(b, v + 1);
-                if normals > 0 {
+                if nn > 0 {
                     b.extend_from_slice(b"//");
-                    put_u32(b, v + 1);
+                    put_u32(b, corners[fi][k] + 1);
                 }
             }
             b.push(b'\n');
@@ -347,6 +357,9 @@ fn read_obj(text: &str, source: &str) -> Result<MeshFile> {
     let mut m = MeshFile::default();
     let mut normals = Vec::new();
     let mut poly = Vec::new();
+    // Per face corner with a normal index (`v//vn`, `v/vt/vn`): (vertex, normal index).
+    let mut corner_normals: Vec<(u32, usize)> = Vec::new();
+    let mut corners_without = false;
     for (li, line) in text.lines().enumerate() {
         let mut t = Tokens::of_line(li + 1, line);
         let Some((_, kw)) = t.next() else { continue };
@@ -369,6 +382,11 @@ fn read_obj(text: &str, source: &str) -> Result<MeshFile> {
                 poly.clear();
                 while let Some((col, tok)) = t.next() {
                     let head = tok.split('/').next().unwrap_or(tok);
+                    // The normal index, when the corner gives one and it is in range.
+                    let vn = tok.split('/').nth(2).and_then(|x| x.parse::<i64>().ok()).and_then(|j| {
+                        let j = if j < 0 { normals.len() as i64 + j } else { j - 1 };
+                        (0..normals.len() as i64).contains(&j).then_some(j as usize)
+                    });
                     let i: i64 = head.parse().map_err(|_| {
                         parse_error(source, li + 1, col, format!("expected a vertex index, found \"{tok}\""))
                     })?;
@@ -377,6 +395,10 @@ fn read_obj(text: &str, source: &str) -> Result<MeshFile> {
                         return Err(parse_error(source, li + 1, col, format!("vertex index {head} is out of range")));
                     }
                     poly.push(i as u32);
+                    match vn {
+                        Some(j) => corner_normals.push((i as u32, j)),
+                        None => corners_without = true,
+                    }
                 }
                 if poly.len() < 3 {
                     return Err(parse_error(source, li + 1, 1, "a face needs at least 3 vertices"));
@@ -386,7 +408,17 @@ fn read_obj(text: &str, source: &str) -> Result<MeshFile> {
             _ => {}
         }
     }
-    if normals.len() == m.positions.len() && !normals.is_empty() {
+    if !corner_normals.is_empty() && !corners_without {
+        // Per-corner normals (split at creases, as curvenet writes them): each vertex gets the
+        // mean of its corners' normals.
+        let mut sum = vec![DVec3::ZERO; m.positions.len()];
+        for &(v, j) in &corner_normals {
+            sum[v as usize] += normals[j];
+        }
+        if sum.iter().all(|s| *s != DVec3::ZERO) {
+            m.normals = Some(sum.iter().map(|s| s.normalize_or_zero()).collect());
+        }
+    } else if normals.len() == m.positions.len() && !normals.is_empty() {
         m.normals = Some(normals);
     }
     Ok(m)

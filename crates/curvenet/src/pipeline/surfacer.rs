@@ -115,8 +115,15 @@ impl Surfacer {
     /// number of normals or an invalid normal (curve and sample named), as [`crate::surface`];
     /// [`Error::Topology`] when the new normals change the network's nodes (they are averaged
     /// there: normals that cancel). The surfacer is unchanged on error.
+    ///
+    /// On a network with crease curves the kept preparation holds each patch's side normals
+    /// and the seam targets made from them: an update prepares the network again (the cost of
+    /// a first solve, [`Surfacer::reprepared`]).
     pub fn update_normals(&mut self, curve: usize, normals: &[DVec3]) -> Result<()> {
         let network = self.changed(curve, normals, "normals", |c, n| c.normals = n)?;
+        if network.has_creases() {
+            return self.reprepared(network);
+        }
         // The curve normals of the mesh: the stages that produce them, with the kept snapping
         // tolerance and spacing (the positions come out as before: they do not depend on the
         // normals).
@@ -142,6 +149,9 @@ impl Surfacer {
     /// nodes, the segments or their vertex counts.
     pub fn update_points(&mut self, curve: usize, points: &[DVec3]) -> Result<()> {
         let network = self.changed(curve, points, "points", |c, p| c.points = p)?;
+        if network.has_creases() {
+            return self.reprepared(network);
+        }
         let res = self.resampled(&network, curve, "points")?;
         let (net, _) = network.validated()?;
         self.prepared.mesh.positions[..res.positions.len()].copy_from_slice(&res.positions);
@@ -204,6 +214,17 @@ impl Surfacer {
             return Err(self.topology_changed(curve, what));
         }
         Ok(res)
+    }
+
+    /// Takes `network` (a network with creases, [`Surfacer::update_normals`]) with a fresh
+    /// preparation: the kept factorisations go, the next solve is a first solve. The surfacer
+    /// is unchanged on error.
+    fn reprepared(&mut self, network: Network) -> Result<()> {
+        self.prepared = prepare(&network, &self.options, &mut |_, _, _| {})?;
+        self.kept = None;
+        self.solves = 0;
+        self.network = network;
+        Ok(())
     }
 
     fn topology_changed(&self, curve: usize, what: &str) -> Error {

@@ -186,7 +186,38 @@ impl Scene {
             mean_curvature,
             propagated_normals: mesh.propagated_normals.filter(|v| v.len() == n).map(<[DVec3]>::to_vec),
             curves: Vec::new(),
-        })
+        }
+        .split_at_sharp_edges())
+    }
+
+    /// The scene with its vertices split where two faces' normals are more than
+    /// [`crate::operators::SHARP_SHADING_DEG`] apart, each side with its own normal
+    /// ([`crate::operators::split_normals`]), so that creases are shaded sharp; the copies
+    /// keep the vertex's curvature and `N*`.
+    pub fn split_at_sharp_edges(self) -> Scene {
+        let angle = crate::operators::SHARP_SHADING_DEG.to_radians();
+        let (normals, corners) = crate::operators::split_normals(&self.faces, &self.positions, &self.normals, angle);
+        if normals.len() == self.positions.len() {
+            return Scene { normals, ..self };
+        }
+        // The vertex each normal belongs to (split copies after the originals).
+        let mut of: Vec<u32> = (0..self.positions.len() as u32).collect();
+        of.resize(normals.len(), 0);
+        for (f, c) in self.faces.iter().zip(&corners) {
+            for k in 0..3 {
+                of[c[k] as usize] = f[k];
+            }
+        }
+        let copy = |v: &[f64]| of.iter().map(|&i| v[i as usize]).collect::<Vec<f64>>();
+        let copy3 = |v: &[DVec3]| of.iter().map(|&i| v[i as usize]).collect::<Vec<DVec3>>();
+        Scene {
+            positions: copy3(&self.positions),
+            faces: corners,
+            normals,
+            mean_curvature: copy(&self.mean_curvature),
+            propagated_normals: self.propagated_normals.as_deref().map(copy3),
+            curves: self.curves,
+        }
     }
 
     /// The scene of a surfacing result (its mesh, normals, curvature and `N*`).
@@ -199,6 +230,7 @@ impl Scene {
             propagated_normals: surface.propagated_normals.clone(),
             curves: Vec::new(),
         }
+        .split_at_sharp_edges()
     }
 
     /// Adds the network's curves (closed curves drawn closed) as polylines.

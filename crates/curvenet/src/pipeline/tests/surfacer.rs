@@ -163,3 +163,41 @@ fn update_normals_errors() {
     // Unchanged after the errors.
     assert_eq!(s.network().curves[0].normals, network.curves[0].normals);
 }
+
+/// On a network with creases an update prepares again: the re-solve equals the pipeline run
+/// on the updated network (side normals and seams from the new normals), and a bad update
+/// leaves the surfacer as it was.
+#[test]
+fn updates_of_a_crease_network_equal_a_fresh_run() {
+    let network = example("can").unwrap();
+    let options = Options::default().with_vertices(3000);
+    let mut s = Surfacer::new(&network, &options).unwrap();
+    let first = s.solve().unwrap();
+    // A side line: smooth, running from rim to rim.
+    let side = (0..network.curves.len())
+        .find(|&i| {
+            let c = &network.curves[i];
+            !c.is_crease() && c.points.iter().any(|p| p.z > 0.9) && c.points.iter().any(|p| p.z < -0.9)
+        })
+        .unwrap();
+    // Turned about the line itself (z): the surface leaves the line at another angle.
+    let (sn, cs) = 0.1f64.sin_cos();
+    let normals: Vec<DVec3> = network.curves[side]
+        .normals
+        .iter()
+        .map(|n| DVec3::new(cs * n.x - sn * n.y, sn * n.x + cs * n.y, n.z))
+        .collect();
+    let too_few = &normals[1..];
+    assert!(s.update_normals(side, too_few).is_err());
+    s.update_normals(side, &normals).unwrap();
+    let again = s.solve().unwrap();
+    let mut changed = network.clone();
+    changed.curves[side].normals = normals;
+    let fresh = surface(&changed, &options).unwrap();
+    assert_eq!(again.mesh.faces, fresh.mesh.faces);
+    let d = max_distance(&again.mesh.positions, &fresh.mesh.positions);
+    assert!(d <= 1e-12, "re-solve differs from a fresh run by {d:e}");
+    // (A new preparation: the mesh may differ.)
+    let same_size = again.mesh.positions.len() == first.mesh.positions.len();
+    assert!(!same_size || max_distance(&again.mesh.positions, &first.mesh.positions) > 1e-3, "nothing moved");
+}
