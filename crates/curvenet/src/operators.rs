@@ -344,6 +344,42 @@ pub fn sectors(num_vertices: usize, faces: &[[u32; 3]], sharp: impl Fn(u32, u32)
     (corners, of)
 }
 
+/// The dihedral-angle features of a mesh: its interior edges (two faces) whose faces' normals
+/// are more than `angle` (radians) apart, as (smaller, larger) vertex pairs, sorted; and its
+/// boundary edges (one face), likewise. The one detection of sharp edges: `curvenet sample`'s
+/// creases, `curvenet fit`'s feature curves and the display normals ([`split_normals`]).
+pub fn sharp_edges(positions: &[DVec3], faces: &[[u32; 3]], angle: f64) -> (Vec<(u32, u32)>, Vec<(u32, u32)>) {
+    let face_normal = |f: &[u32; 3]| {
+        let p = f.map(|i| positions[i as usize]);
+        (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero()
+    };
+    // Per undirected edge, the normals of its faces (up to three kept: a non-manifold edge is
+    // neither sharp nor boundary).
+    let mut edge: std::collections::HashMap<(u32, u32), Vec<DVec3>> = Default::default();
+    for f in faces {
+        let n = face_normal(f);
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            let list = edge.entry((a.min(b), a.max(b))).or_default();
+            if list.len() < 3 {
+                list.push(n);
+            }
+        }
+    }
+    let cos = angle.cos();
+    let (mut sharp, mut boundary) = (Vec::new(), Vec::new());
+    for (e, ns) in edge {
+        match ns.as_slice() {
+            [_] => boundary.push(e),
+            [n, m] if n.dot(*m) < cos => sharp.push(e),
+            _ => {}
+        }
+    }
+    sharp.sort_unstable();
+    boundary.sort_unstable();
+    (sharp, boundary)
+}
+
 /// The dihedral angle (degrees) above which display normals are split ([`split_normals`]): the
 /// OBJ writer's per-corner normals, renders and the viewer shade such edges sharp. Blender's
 /// default auto-smooth angle; a crease found by `curvenet sample` is at least this sharp.
@@ -364,18 +400,8 @@ pub fn split_normals(
         let p = f.map(|i| positions[i as usize]);
         (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero()
     };
-    // Per undirected edge, the normals of its faces (two for an interior edge).
-    let mut edge: std::collections::HashMap<(u32, u32), Vec<DVec3>> = Default::default();
-    for f in faces {
-        let n = face_normal(f);
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            edge.entry((a.min(b), a.max(b))).or_default().push(n);
-        }
-    }
-    let cos = angle.cos();
-    let sharp =
-        |a: u32, b: u32| edge.get(&(a.min(b), a.max(b))).is_some_and(|ns| ns.len() == 2 && ns[0].dot(ns[1]) < cos);
+    let sharp: std::collections::HashSet<(u32, u32)> = sharp_edges(positions, faces, angle).0.into_iter().collect();
+    let sharp = |a: u32, b: u32| sharp.contains(&(a.min(b), a.max(b)));
     let (corners, of) = sectors(positions.len(), faces, sharp);
     if of.len() == positions.len() {
         return (normals.to_vec(), faces.to_vec());

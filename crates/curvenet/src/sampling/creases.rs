@@ -37,33 +37,17 @@ type Sharp = HashSet<(u32, u32)>;
 /// vertex then joins the first).
 type Chain = (Vec<u32>, bool);
 
-/// The mesh's sharp edges: interior edges between two faces whose normals are more than
-/// `angle` (radians) apart. Edges that touch the mesh's own boundary are left smooth (the
+/// The mesh's sharp edges ([`crate::operators::sharp_edges`]: interior edges between two
+/// faces whose normals are more than `angle` (radians) apart). Edges that touch the mesh's own boundary are left smooth (the
 /// boundary loops stay apart from the creases, which end one edge short of the boundary).
 pub(super) fn sharp_edges(positions: &[DVec3], faces: &[[u32; 3]], angle: f64) -> Sharp {
-    let normal = |f: &[u32; 3]| {
-        let p = |k: usize| positions[f[k] as usize];
-        (p(1) - p(0)).cross(p(2) - p(0)).normalize_or_zero()
-    };
-    let edges = super::mesh::edge_faces(faces);
-    let cos = angle.cos();
+    let (sharp, boundary) = crate::operators::sharp_edges(positions, faces, angle);
     let mut on_boundary = vec![false; positions.len()];
-    for (e, fs) in &edges {
-        if fs.len() == 1 {
-            on_boundary[e.0 as usize] = true;
-            on_boundary[e.1 as usize] = true;
-        }
+    for (a, b) in boundary {
+        on_boundary[a as usize] = true;
+        on_boundary[b as usize] = true;
     }
-    edges
-        .iter()
-        .filter(|(e, fs)| {
-            fs.len() == 2
-                && !on_boundary[e.0 as usize]
-                && !on_boundary[e.1 as usize]
-                && normal(&faces[fs[0]]).dot(normal(&faces[fs[1]])) < cos
-        })
-        .map(|(e, _)| *e)
-        .collect()
+    sharp.into_iter().filter(|&(a, b)| !on_boundary[a as usize] && !on_boundary[b as usize]).collect()
 }
 
 /// The sharp edges chained between their junctions (vertices where other than two sharp

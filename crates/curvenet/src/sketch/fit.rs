@@ -96,32 +96,14 @@ fn face_normal(p: &[DVec3], f: [u32; 3]) -> DVec3 {
 }
 
 /// Feature vertices: the ends of edges whose dihedral angle exceeds `angle` degrees, and of
-/// boundary edges.
+/// boundary edges ([`crate::operators::sharp_edges`], the detection `curvenet sample` finds its
+/// creases with).
 pub fn feature_vertices(positions: &[DVec3], faces: &[[u32; 3]], angle: f64) -> Vec<bool> {
-    let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-    for (fi, f) in faces.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            edges.entry((a.min(b), a.max(b))).or_default().push(fi);
-        }
-    }
-    let cos = angle.to_radians().cos();
+    let (sharp, boundary) = crate::operators::sharp_edges(positions, faces, angle.to_radians());
     let mut out = vec![false; positions.len()];
-    for (&(a, b), fs) in &edges {
-        let sharp = match fs.as_slice() {
-            [f, g] => {
-                let (n, m) = (
-                    face_normal(positions, faces[*f]).normalize_or_zero(),
-                    face_normal(positions, faces[*g]).normalize_or_zero(),
-                );
-                n.dot(m) < cos
-            }
-            _ => true,
-        };
-        if sharp {
-            out[a as usize] = true;
-            out[b as usize] = true;
-        }
+    for (a, b) in sharp.into_iter().chain(boundary) {
+        out[a as usize] = true;
+        out[b as usize] = true;
     }
     out
 }
