@@ -148,9 +148,8 @@ pub fn run(a: &FitArgs) -> Result<(), Error> {
 
 pub fn run_resurface(a: &ResurfaceArgs) -> Result<(), Error> {
     check_mesh_path(&a.output)?;
-    let text =
-        std::fs::read_to_string(&a.input).map_err(|e| Error::Io { path: a.input.display().to_string(), source: e })?;
-    let model: CauchyModel = serde_json::from_str(&text).map_err(|e| Error::Parse {
+    let bytes = curvenet::io::read_input(&a.input, curvenet::io::InputKind::Text, curvenet::io::MAX_INPUT_BYTES)?;
+    let model: CauchyModel = serde_json::from_slice(&bytes).map_err(|e| Error::Parse {
         path: a.input.display().to_string(),
         line: e.line(),
         column: e.column(),

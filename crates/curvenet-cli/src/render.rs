@@ -153,7 +153,7 @@ fn is_mesh(path: &Path) -> Result<bool, Error> {
         "ply" | "off" => Ok(true),
         "json" | "net" => Ok(false),
         "obj" => {
-            let text = std::fs::read(path).map_err(|e| Error::Io { path: path.display().to_string(), source: e })?;
+            let text = curvenet::io::read_input(path, curvenet::io::InputKind::Text, curvenet::io::MAX_INPUT_BYTES)?;
             Ok(text.split(|&b| b == b'\n').any(|l| l.starts_with(b"f ")))
         }
         _ => Err(Error::usage(format!(

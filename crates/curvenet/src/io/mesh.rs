@@ -307,8 +307,8 @@ fn write_ply(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
 
 /// Reads a triangle mesh (`.obj`, `.off`, `.ply`); polygons are fan-triangulated.
 pub fn read_mesh(path: &Path) -> Result<MeshFile> {
-    mesh_format(path)?;
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let kind = if mesh_format(path)? == MeshFormat::Ply { super::InputKind::Ply } else { super::InputKind::Text };
+    let bytes = super::read_input(path, kind, super::MAX_INPUT_BYTES)?;
     parse_mesh(&bytes, path, &path.display().to_string())
 }
 

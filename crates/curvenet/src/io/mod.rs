@@ -48,11 +48,71 @@ pub(crate) fn extension(path: &Path) -> String {
     path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase()
 }
 
+/// The largest input file read (networks, meshes, models): 1 GiB. A larger file, or an input
+/// that never ends (`/dev/zero`, a pipe), is an input error after this many bytes, not an
+/// out-of-memory abort.
+pub const MAX_INPUT_BYTES: u64 = 1 << 30;
+
+/// How the first bytes of an input must look ([`read_input`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InputKind {
+    /// Text: no NUL byte (JSON, OBJ, `.net`, OFF, SVG, models).
+    Text,
+    /// A PLY file: starts with `ply`.
+    Ply,
+}
+
+/// Reads the file at `path`, at most `max` bytes (more is an input error naming the limit),
+/// rejecting it at its first 64 KiB when they cannot start a file of `kind` (a NUL byte in
+/// text: binary data such as `/dev/zero`; a PLY without its `ply` line) — before reading the
+/// rest.
+pub fn read_input(path: &Path, kind: InputKind, max: u64) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let source = path.display().to_string();
+    let mut file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let mut bytes = Vec::new();
+    const HEAD: u64 = 64 << 10;
+    (&mut file).take(HEAD.min(max + 1)).read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
+    let head = &bytes[..];
+    match kind {
+        InputKind::Text => {
+            if head.starts_with(&[0xff, 0xfe]) || head.starts_with(&[0xfe, 0xff]) {
+                return Err(Error::parse(
+                    &source,
+                    1,
+                    1,
+                    "file is not valid UTF-8 text: UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8",
+                ));
+            }
+            if let Some(i) = head.iter().position(|&b| b == 0) {
+                let (line, column) = line_col(&head[..i]);
+                return Err(Error::parse(&source, line, column, "a NUL byte: binary data, not a text file"));
+            }
+        }
+        InputKind::Ply => {
+            let start = head.strip_prefix(b"\xef\xbb\xbf").unwrap_or(head);
+            if !(start.starts_with(b"ply\n") || start.starts_with(b"ply\r\n") || start == b"ply") {
+                return Err(Error::parse(&source, 1, 1, "not a PLY file: the first line must be \"ply\""));
+            }
+        }
+    }
+    if bytes.len() as u64 == HEAD.min(max + 1) {
+        file.take(max + 1 - bytes.len() as u64).read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
+    }
+    if bytes.len() as u64 > max {
+        return Err(Error::input(format!(
+            "{source}: larger than {} MiB, the largest input read (or an input that never ends)",
+            max >> 20
+        )));
+    }
+    Ok(bytes)
+}
+
 /// Reads a curve network; the format comes from the extension. The network is returned as
 /// written in the file: call [`Network::validated`] (the pipeline does) to check its values.
 pub fn read_network(path: &Path) -> Result<Network> {
     let format = NetworkFormat::from_path(path)?;
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let bytes = read_input(path, InputKind::Text, MAX_INPUT_BYTES)?;
     let text = String::from_utf8(bytes).map_err(|e| {
         let (line, column) = line_col(&e.as_bytes()[..e.utf8_error().valid_up_to()]);
         Error::Parse { path: path.display().to_string(), line, column, message: "file is not valid UTF-8 text".into() }

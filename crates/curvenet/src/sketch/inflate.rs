@@ -117,6 +117,7 @@ pub fn inflate(paths: &[SketchPath], o: &InflateOptions) -> Result<Inflated> {
     check_inside(paths, &outline)?;
     // Spacing for about `vertices` vertices.
     let d = (crate::tessellate::VERTICES_PER_AREA * outline.area / o.vertices as f64).sqrt();
+    check_not_sliver(paths, &outline, d, o.vertices)?;
     let (mut cdt, sampled) = insert_paths(paths, &outline, &kinds, d, o.crease_sharpness)?;
     refine(&mut cdt, outline.area, d)?;
     let planar = inner_triangles(&cdt, &outline.points);
@@ -281,6 +282,41 @@ fn insert_paths(
         sampled.push(Sampled { kind: kinds[i], handles, closed: p.closed, sharpness });
     }
     Ok((cdt, sampled))
+}
+
+/// A sliver outline (an ellipse with `ry = 1e-4`) has almost no area for its length: at the
+/// spacing `d` its area gives, its paths would take more samples than the `vertices` asked
+/// for the whole sketch (a circle's outline takes √(2π · vertices)), and the triangulation's
+/// refinement between them would run for minutes. An input error naming the outline's mean
+/// width (2 × area / perimeter).
+fn check_not_sliver(paths: &[SketchPath], outline: &Outline, d: f64, vertices: usize) -> Result<()> {
+    let length = |pts: &[DVec2], closed: bool| {
+        let open: f64 = pts.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let close = match (closed, pts.first(), pts.last()) {
+            (true, Some(a), Some(b)) => a.distance(*b),
+            _ => 0.0,
+        };
+        open + close
+    };
+    let total: f64 = paths
+        .iter()
+        .enumerate()
+        .map(|(i, p)| if i == outline.index { length(&outline.points, true) } else { length(&p.points, p.closed) })
+        .sum();
+    let samples = total / d;
+    if !(samples <= 0.5 * vertices as f64) {
+        let perimeter = length(&outline.points, true);
+        return Err(Error::input(format!(
+            "line {}: the outline is a sliver (area {:.3e}, perimeter {:.3e}: mean width {:.3e}); its paths would take {:.0} \
+             samples for {vertices} vertices; draw it wider",
+            paths[outline.index].line,
+            outline.area,
+            perimeter,
+            2.0 * outline.area / perimeter,
+            samples.min(1e18)
+        )));
+    }
+    Ok(())
 }
 
 /// Refines the triangulation (angles ≥ 25°, areas ≤ 0.69 d², the constraint edges kept);
@@ -468,18 +504,8 @@ pub const MAX_SKETCH_BYTES: u64 = 64 << 20;
 /// ([`super::svg::read_svg`]). Files larger than [`MAX_SKETCH_BYTES`] are an input error, text
 /// that is not UTF-8 a parse error at the first bad byte.
 pub fn read_sketch(path: &std::path::Path) -> Result<Vec<SketchPath>> {
-    use std::io::Read;
     let source = path.display().to_string();
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| f.take(MAX_SKETCH_BYTES + 1).read_to_end(&mut bytes))
-        .map_err(|e| Error::io(path, e))?;
-    if bytes.len() as u64 > MAX_SKETCH_BYTES {
-        return Err(Error::input(format!(
-            "{source}: larger than {} MiB, too large for a sketch",
-            MAX_SKETCH_BYTES >> 20
-        )));
-    }
+    let bytes = crate::io::read_input(path, crate::io::InputKind::Text, MAX_SKETCH_BYTES)?;
     let text = String::from_utf8(bytes).map_err(|e| {
         let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
         let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);

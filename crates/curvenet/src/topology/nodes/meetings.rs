@@ -44,22 +44,26 @@ pub(super) fn meeting_nodes(
 
 /// The passages of the curves through one meeting (the contacts `cluster` of `hits`): per
 /// curve, the runs of contact locations within [`SAME_MEETING`] tolerances of each other
-/// along the curve, each run represented by its middle location; runs of a closed curve on
-/// both sides of its seam are one. Sorted by curve and arc position.
+/// along the curve, each run represented by the location of its closest contact (where the
+/// curve comes nearest to another one: the crossing itself, whatever the number of samples
+/// within the tolerance around it — the middle of the run drifts with the sampling); runs of a
+/// closed curve on both sides of its seam are one. Sorted by curve and arc position.
 ///
 /// Errors ([`Error::Input`]): a run longer than 8 tolerances (a curve that runs along another
 /// one, or along itself).
 pub(super) fn passages(lines: &Polylines, hits: &[Hit], cluster: &[usize], snap: f64) -> Result<Vec<Passage>> {
     let labels = lines.labels;
-    let mut locs: Vec<(usize, f64, Loc)> = Vec::new();
+    // (curve, arc position, location, distance between the contact's two points)
+    let mut locs: Vec<(usize, f64, Loc, f64)> = Vec::new();
     for &k in cluster {
+        let gap = lines.point_at(hits[k].a).distance(lines.point_at(hits[k].b));
         for l in [hits[k].a, hits[k].b] {
-            locs.push((l.curve, lines.arc_at(l), l));
+            locs.push((l.curve, lines.arc_at(l), l, gap));
         }
     }
     locs.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
     // Split into passages: runs of one curve whose arc positions are close.
-    let mut passages: Vec<(usize, f64, Loc)> = Vec::new();
+    let mut passages: Vec<Passage> = Vec::new();
     let mut i = 0;
     while i < locs.len() {
         let mut j = i + 1;
@@ -83,8 +87,10 @@ pub(super) fn passages(lines: &Polylines, hits: &[Hit], cluster: &[usize], snap:
             .curve(c)
             .point(lines.point_at(locs[i].2)));
         }
-        // The passage at the middle location of the run.
-        passages.push(locs[(i + j - 1) / 2]);
+        // The passage at the run's closest contact (the first of equals).
+        let best = (i..j).fold(i, |b, k| if locs[k].3 < locs[b].3 { k } else { b });
+        let (c, arc, loc, _) = locs[best];
+        passages.push((c, arc, loc));
         i = j;
     }
     // A closed curve's run may straddle its seam (arc 0 / length): merge first and last.
