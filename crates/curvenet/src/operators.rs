@@ -344,11 +344,14 @@ pub fn sectors(num_vertices: usize, faces: &[[u32; 3]], sharp: impl Fn(u32, u32)
     (corners, of)
 }
 
+/// An undirected mesh edge: its two vertices, smaller first.
+pub type Edge = (u32, u32);
+
 /// The dihedral-angle features of a mesh: its interior edges (two faces) whose faces' normals
 /// are more than `angle` (radians) apart, as (smaller, larger) vertex pairs, sorted; and its
 /// boundary edges (one face), likewise. The one detection of sharp edges: `curvenet sample`'s
 /// creases, `curvenet fit`'s feature curves and the display normals ([`split_normals`]).
-pub fn sharp_edges(positions: &[DVec3], faces: &[[u32; 3]], angle: f64) -> (Vec<(u32, u32)>, Vec<(u32, u32)>) {
+pub fn sharp_edges(positions: &[DVec3], faces: &[[u32; 3]], angle: f64) -> (Vec<Edge>, Vec<Edge>) {
     let face_normal = |f: &[u32; 3]| {
         let p = f.map(|i| positions[i as usize]);
         (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero()
