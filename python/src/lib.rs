@@ -48,6 +48,7 @@ fn err(e: curvenet::Error) -> PyErr {
             curvenet::Error::Topology { .. } => TopologyError::new_err(message),
             curvenet::Error::Numerical { .. } => NumericalError::new_err(message),
             curvenet::Error::Usage { .. } => UsageError::new_err(message),
+            curvenet::Error::Memory { .. } => pyo3::exceptions::PyMemoryError::new_err(message),
             _ => Error::new_err(message),
         };
         let value = pe.value(py);

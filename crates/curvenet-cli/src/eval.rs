@@ -30,15 +30,35 @@ pub struct EvalArgs {
     json: bool,
 }
 
+/// A mesh statistics can be measured on: some triangles, every vertex finite (an input error
+/// naming the file and vertex otherwise: statistics of NaN or of nothing would mislead).
+fn measurable(mesh: &curvenet::io::MeshFile, path: &Path) -> Result<(), Error> {
+    if mesh.faces.is_empty() || mesh.positions.is_empty() {
+        return Err(Error::input(format!("{}: the mesh has no triangles to measure", path.display())));
+    }
+    if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
+        return Err(Error::input(format!(
+            "{}: vertex {i} has a non-finite coordinate ({}, {}, {})",
+            path.display(),
+            mesh.positions[i].x,
+            mesh.positions[i].y,
+            mesh.positions[i].z
+        )));
+    }
+    Ok(())
+}
+
 pub fn run(a: &EvalArgs) -> Result<(), Error> {
     use curvenet::metrics::{evaluate, near_curves, DistanceStats, Reference};
     let mesh = curvenet::io::read_mesh(&a.mesh)?;
+    measurable(&mesh, &a.mesh)?;
     let reference_mesh;
     let (reference, truth_text) = match Truth::parse(&a.truth) {
         Some(Ok(t)) => (Reference::Analytic(t), format!("{t:?}")),
         Some(Err(e)) => return Err(Error::usage(e)),
         None => {
             reference_mesh = curvenet::io::read_mesh(Path::new(&a.truth))?;
+            measurable(&reference_mesh, Path::new(&a.truth))?;
             (
                 Reference::Mesh { positions: &reference_mesh.positions, faces: &reference_mesh.faces },
                 format!("mesh {} ({} vertices)", a.truth, reference_mesh.positions.len()),

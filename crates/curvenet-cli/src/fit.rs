@@ -2,7 +2,7 @@
 //! and solving the fitted model again (\[A11\] §6; docs/cauchy.md).
 
 use clap::Args;
-use curvenet::io::{check_mesh_path, read_mesh, write_mesh, write_text, MeshData};
+use curvenet::io::{check_mesh_path, read_mesh, MeshData};
 use curvenet::sketch::fit::{fit, resurface, CauchyModel, FitOptions};
 use curvenet::Error;
 use std::io::Write;
@@ -52,9 +52,13 @@ pub struct ResurfaceArgs {
     output: PathBuf,
 }
 
-fn write(path: &std::path::Path, positions: &[curvenet::geom::DVec3], faces: &[[u32; 3]]) -> Result<(), Error> {
+fn stage(
+    path: &std::path::Path,
+    positions: &[curvenet::geom::DVec3],
+    faces: &[[u32; 3]],
+) -> Result<curvenet::io::Staged, Error> {
     let normals = curvenet::operators::vertex_normals(faces, positions);
-    write_mesh(
+    curvenet::io::stage_mesh(
         path,
         MeshData {
             positions,
@@ -84,27 +88,6 @@ pub fn run(a: &FitArgs) -> Result<(), Error> {
     };
     let (model, out, report) = fit(&mesh.positions, &mesh.faces, &opts)?;
     let json = serde_json::to_string(&model).map_err(|e| Error::usage(e.to_string()))?;
-    write_text(&a.output, &json)?;
-    if let Some(s) = &a.surface {
-        write(s, &out, &mesh.faces)?;
-    }
-    if !a.quiet && a.reduce.is_some() {
-        out!("greedy reduction: {} of {} feature curves kept", report.curves_kept, report.curves);
-    }
-    if !a.quiet {
-        out!(
-            "{}: {} vertices, {} feature vertices, {} ghosts; re-surfaced: max {:.3e}, RMS {:.3e} ({:.3}% of the diagonal {:.3}); {:.3} s",
-            a.output.display(),
-            report.vertices,
-            report.feature_vertices,
-            report.ghosts,
-            report.max_distance,
-            report.rms_distance,
-            100.0 * report.rms_distance / report.diagonal,
-            report.diagonal,
-            report.seconds
-        );
-    }
     if a.bench {
         let positions = mesh.positions.clone();
         let n = positions.len();
@@ -143,6 +126,33 @@ pub fn run(a: &FitArgs) -> Result<(), Error> {
             b.max_difference
         );
     }
+    // Both outputs staged, then committed together.
+    let staged_model = curvenet::io::Staged::write(&a.output, |w| w.write_all(json.as_bytes()))?;
+    let staged_surface = match &a.surface {
+        Some(s) => Some(stage(s, &out, &mesh.faces)?),
+        None => None,
+    };
+    staged_model.commit()?;
+    if let Some(s) = staged_surface {
+        s.commit()?;
+    }
+    if !a.quiet && a.reduce.is_some() {
+        out!("greedy reduction: {} of {} feature curves kept", report.curves_kept, report.curves);
+    }
+    if !a.quiet {
+        out!(
+            "{}: {} vertices, {} feature vertices, {} ghosts; re-surfaced: max {:.3e}, RMS {:.3e} ({:.3}% of the diagonal {:.3}); {:.3} s",
+            a.output.display(),
+            report.vertices,
+            report.feature_vertices,
+            report.ghosts,
+            report.max_distance,
+            report.rms_distance,
+            100.0 * report.rms_distance / report.diagonal,
+            report.diagonal,
+            report.seconds
+        );
+    }
     Ok(())
 }
 
@@ -155,8 +165,11 @@ pub fn run_resurface(a: &ResurfaceArgs) -> Result<(), Error> {
         column: e.column(),
         message: e.to_string(),
     })?;
-    let out = resurface(&model)?;
-    write(&a.output, &out, &model.faces)?;
+    let out = resurface(&model).map_err(|e| match e {
+        Error::Input { message, .. } => Error::input(format!("{}: {message}", a.input.display())),
+        e => e,
+    })?;
+    stage(&a.output, &out, &model.faces)?.commit()?;
     out!("{}: {} vertices re-surfaced from {} Cauchy vertices", a.output.display(), out.len(), model.constraints.len());
     Ok(())
 }

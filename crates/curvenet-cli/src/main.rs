@@ -95,7 +95,29 @@ enum Command {
     Resurface(fit::ResurfaceArgs),
 }
 
+/// On SIGINT, SIGTERM or SIGHUP: remove the outputs staged and not yet committed (their
+/// temporary files beside the targets, [`curvenet::io::remove_staged_files`]) and exit with
+/// 128 + the signal's number, as the shell reports a killed process. The signals are taken
+/// by a thread of their own (signal-hook), so the cleanup runs outside the signal context.
+#[cfg(unix)]
+fn clean_up_on_signals() {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        if let Some(sig) = signals.forever().next() {
+            curvenet::io::remove_staged_files();
+            std::process::exit(128 + sig);
+        }
+    });
+}
+
+#[cfg(not(unix))]
+fn clean_up_on_signals() {}
+
 fn main() -> ExitCode {
+    clean_up_on_signals();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Surface(a) => surface::run(&a),

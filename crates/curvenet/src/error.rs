@@ -110,6 +110,15 @@ pub enum Error {
         at: Box<At>,
     },
 
+    /// A run whose estimated peak memory exceeds what is available (the process's address-space
+    /// limit, the machine's available memory, or `max_memory`), refused before it allocates;
+    /// or an allocation that failed. The message names the estimate and a smaller setting.
+    #[error("not enough memory: {message}")]
+    Memory {
+        /// The estimate, the memory available, and what to change.
+        message: String,
+    },
+
     /// A broken invariant inside curvenet: a bug, not a problem of the input. Please report
     /// it with the input that caused it.
     #[error("internal error (please report it with the input): {message}")]
@@ -140,6 +149,11 @@ impl Error {
         Error::Usage { message: message.into() }
     }
 
+    /// An [`Error::Memory`] with `message`.
+    pub fn memory(message: impl Into<String>) -> Self {
+        Error::Memory { message: message.into() }
+    }
+
     /// An [`Error::Internal`] with `message`.
     pub fn internal(message: impl Into<String>) -> Self {
         Error::Internal { message: message.into() }
@@ -156,17 +170,19 @@ impl Error {
     }
 
     /// The process exit code the command-line tool uses for this error:
-    /// 1 bad input, 2 usage, 3 numerical failure, 4 internal error.
+    /// 1 bad input, 2 usage (and a run too large for the memory available), 3 numerical failure,
+    /// 4 internal error.
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Parse { .. } | Error::Input { .. } | Error::Topology { .. } | Error::Io { .. } => 1,
-            Error::Usage { .. } => 2,
+            Error::Usage { .. } | Error::Memory { .. } => 2,
             Error::Numerical { .. } => 3,
             Error::Internal { .. } => 4,
         }
     }
 
-    /// The kind's name: `parse`, `input`, `topology`, `io`, `usage`, `numerical`, `internal`.
+    /// The kind's name: `parse`, `input`, `topology`, `io`, `usage`, `numerical`, `memory`,
+    /// `internal`.
     pub fn kind(&self) -> &'static str {
         match self {
             Error::Parse { .. } => "parse",
@@ -175,6 +191,7 @@ impl Error {
             Error::Io { .. } => "io",
             Error::Usage { .. } => "usage",
             Error::Numerical { .. } => "numerical",
+            Error::Memory { .. } => "memory",
             Error::Internal { .. } => "internal",
         }
     }

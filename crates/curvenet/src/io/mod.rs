@@ -198,6 +198,25 @@ pub struct Staged {
     done: bool,
 }
 
+/// The temporary files of the [`Staged`] outputs not yet committed or dropped, for
+/// [`remove_staged_files`].
+static STAGED: std::sync::Mutex<Vec<std::path::PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+fn unregister(tmp: &Path) {
+    let mut list = STAGED.lock().unwrap_or_else(|e| e.into_inner());
+    list.retain(|p| p != tmp);
+}
+
+/// Removes the temporary files of every output staged and not yet committed (or dropped):
+/// what a signal handler calls before the process exits on SIGINT or SIGTERM (the command
+/// line does), so that an interrupted run leaves the output folder as it was.
+pub fn remove_staged_files() {
+    let list = STAGED.lock().unwrap_or_else(|e| e.into_inner());
+    for tmp in list.iter() {
+        let _ = std::fs::remove_file(tmp);
+    }
+}
+
 impl Staged {
     /// Writes through `body` into a temporary file beside `path`.
     pub fn write(path: &Path, body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<Staged> {
@@ -207,6 +226,7 @@ impl Staged {
         };
         let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
         let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+        STAGED.lock().unwrap_or_else(|e| e.into_inner()).push(tmp.clone());
         let staged = Staged { tmp, path: path.to_path_buf(), done: false };
         let result = (|| -> std::io::Result<()> {
             let file = std::fs::File::create(&staged.tmp)?;
@@ -224,6 +244,7 @@ impl Staged {
     pub fn commit(mut self) -> Result<()> {
         std::fs::rename(&self.tmp, &self.path).map_err(|e| Error::io(&self.path, e))?;
         self.done = true;
+        unregister(&self.tmp);
         Ok(())
     }
 }
@@ -232,6 +253,7 @@ impl Drop for Staged {
     fn drop(&mut self) {
         if !self.done {
             let _ = std::fs::remove_file(&self.tmp);
+            unregister(&self.tmp);
         }
     }
 }

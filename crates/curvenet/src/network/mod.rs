@@ -114,6 +114,11 @@ impl Network {
     /// A normal within this cosine of the curve's direction on both sides of its sample
     /// (about 11°) is tangent to the curve: it defines no side of the surface.
     pub const TANGENT_NORMAL_COSINE: f64 = 0.98;
+    /// Consecutive samples whose normals are more than 120° apart (cosine below this; the
+    /// ends of open curves excepted) are an input error: normals that flip sign along a curve (a surface turns its normal smoothly;
+    /// a network sampled so coarsely that its normal turns by 120° between two samples does
+    /// not define the surface between them either).
+    pub const FLIPPED_NORMAL_COSINE: f64 = -0.5;
     /// Where the two normals of a crease curve are closer than this angle (degrees), the
     /// surface is smooth across the curve (a crease may fade out along a curve).
     pub const SMOOTH_CREASE_DEGREES: f64 = 3.0;
@@ -284,7 +289,8 @@ impl Network {
     /// a snapping tolerance that is not a positive number; coordinates or an extent outside
     /// [`Network::MAX_EXTENT`]; a network far from the origin compared with its size
     /// ([`Network::MAX_OFFSET_RATIO`]); a normal tangent to its curve
-    /// ([`Network::TANGENT_NORMAL_COSINE`]).
+    /// ([`Network::TANGENT_NORMAL_COSINE`]); normals that flip between consecutive samples
+    /// ([`Network::FLIPPED_NORMAL_COSINE`]).
     pub fn validated(&self) -> Result<(Network, Vec<Warning>)> {
         let mut warnings = Vec::new();
         if self.curves.is_empty() {
@@ -395,6 +401,26 @@ impl Network {
                 .sample(sample)
                 .point(points[si]));
             }
+            let flip = |n: &[DVec3]| flipped_normal(n, c.closed);
+            let bad = flip(&normals)
+                .map(|si| (si, "normal"))
+                .or_else(|| flip(&normals_right).map(|si| (si, "normals_right")));
+            if let Some((si, what)) = bad {
+                let sample = input_sample[si];
+                let list = if what == "normal" { &normals } else { &normals_right };
+                let prev = list[if si > 0 { si - 1 } else { list.len() - 1 }];
+                return Err(Error::input(format!(
+                    "{label}, sample {sample}: {what} {} turns by {:.0}° from the previous sample's {}; normals must \
+                     point to the same side of the surface all along a curve (a sign flip, as from a sensor axis read \
+                     the wrong way?)",
+                    fmt_point(list[si]),
+                    list[si].angle_between(prev).to_degrees(),
+                    fmt_point(prev)
+                ))
+                .curve(ci)
+                .sample(sample)
+                .point(points[si]));
+            }
             curves.push(Curve {
                 name: c.name.clone(),
                 points,
@@ -431,6 +457,16 @@ fn tangent_normal(points: &[DVec3], normals: &[DVec3], closed: bool) -> Option<u
         let along = |c: Option<DVec3>| c.is_none_or(|c| normals[i].dot(c).abs() > Network::TANGENT_NORMAL_COSINE);
         (before.is_some() || after.is_some()) && along(before) && along(after)
     })
+}
+
+/// The first sample whose unit normal turns by more than [`Network::FLIPPED_NORMAL_COSINE`]'s
+/// angle from the previous sample's (around a closed curve, sample 0 from the last one): the
+/// sign flips of inconsistent sensor data. The end samples of an open curve are left out (an
+/// end may sit on a node whose normal a sketch's inference averages over the curves there).
+fn flipped_normal(normals: &[DVec3], closed: bool) -> Option<usize> {
+    let n = normals.len();
+    let (start, end) = if closed { (0, n) } else { (2, n.saturating_sub(1)) };
+    (start..end).find(|&i| normals[i].dot(normals[(i + n - 1) % n]) < Network::FLIPPED_NORMAL_COSINE)
 }
 
 /// A small deterministic generator (SplitMix64) with Gaussian samples (Box–Muller), so that

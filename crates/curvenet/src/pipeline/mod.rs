@@ -12,6 +12,7 @@
 //! [`surface`] runs them once; [`surfacer::Surfacer`] keeps the mesh and the method's
 //! factorisations for re-solves with new curve normals or positions.
 
+pub mod budget;
 pub mod infer;
 pub mod options;
 pub mod prepare;

@@ -77,6 +77,10 @@ pub struct MeshOptions {
     /// `patching`: the domain each patch is triangulated in. Default
     /// [`MeshOptions::DEFAULT_PATCHING`].
     pub patching: Patching,
+    /// `max_memory`: the most memory (bytes) a run may take; a run whose estimated peak is
+    /// larger is refused before it allocates ([`crate::pipeline::budget`]). `None`: the memory
+    /// available (the process's address-space limit, the machine's available memory).
+    pub max_memory: Option<f64>,
 }
 
 impl MeshOptions {
@@ -91,7 +95,7 @@ impl MeshOptions {
 
 impl Default for MeshOptions {
     fn default() -> Self {
-        MeshOptions { spacing: None, vertices: None, snap: None, patching: Self::DEFAULT_PATCHING }
+        MeshOptions { spacing: None, vertices: None, snap: None, patching: Self::DEFAULT_PATCHING, max_memory: None }
     }
 }
 
@@ -283,6 +287,26 @@ impl std::fmt::Debug for OptionSpec {
 
 fn number(v: &str) -> std::result::Result<f64, &'static str> {
     v.parse::<f64>().ok().filter(|x| x.is_finite()).ok_or("a finite number")
+}
+
+/// A size in bytes: a number with an optional K, M, G or T suffix (powers of 1024), above 0.
+fn bytes(v: &str) -> Option<f64> {
+    let v = v.trim();
+    let (digits, scale) = match v.char_indices().last() {
+        Some((i, c)) if c.is_ascii_alphabetic() => {
+            let scale = match c.to_ascii_uppercase() {
+                'K' => 1024f64,
+                'M' => 1024f64.powi(2),
+                'G' => 1024f64.powi(3),
+                'T' => 1024f64.powi(4),
+                _ => return None,
+            };
+            (&v[..i], scale)
+        }
+        _ => (v, 1.0),
+    };
+    let x = number(digits).ok()? * scale;
+    (x.is_finite() && x > 0.0).then_some(x)
 }
 
 fn count(v: &str) -> std::result::Result<usize, &'static str> {
@@ -523,6 +547,20 @@ pub const OPTIONS: &[OptionSpec] = &[
             Ok(())
         },
         get: |o| o.mesh.snap.map(text),
+    },
+    OptionSpec {
+        name: "max_memory",
+        value_name: "BYTES",
+        choices: &[],
+        help: "The most memory a run may take (e.g. 4G, 500M, 2e9 bytes): a run whose estimated peak is \
+               larger is refused before it starts, naming the estimate and a vertex count that fits.",
+        unset: Some("the memory available: the process's address-space limit (ulimit -v) or the machine's available memory"),
+        aliases: &[],
+        set: |o, v| {
+            o.mesh.max_memory = Some(bytes(v).ok_or("a size in bytes, such as 4G, 500M or 2e9")?);
+            Ok(())
+        },
+        get: |o| o.mesh.max_memory.map(text),
     },
     OptionSpec {
         name: "order",

@@ -92,6 +92,7 @@ pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'
             MeshOptions::MAX_VERTICES
         )));
     }
+    super::budget::check(estimate, options)?;
     timings.resample += seconds_since(clock);
 
     let mut st = SolveTimings::default();

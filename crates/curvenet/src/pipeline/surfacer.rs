@@ -118,7 +118,7 @@ impl Surfacer {
     ///
     /// On a network with crease curves the kept preparation holds each patch's side normals
     /// and the seam targets made from them: an update prepares the network again (the cost of
-    /// a first solve, [`Surfacer::reprepared`]).
+    /// a first solve, the preparation of [`Surfacer::new`]).
     pub fn update_normals(&mut self, curve: usize, normals: &[DVec3]) -> Result<()> {
         let network = self.changed(curve, normals, "normals", |c, n| c.normals = n)?;
         if network.has_creases() {

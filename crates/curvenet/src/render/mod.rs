@@ -417,7 +417,24 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> Result<Image> {
     render_panels(&panels, columns, options.width, options.height)
 }
 
+/// The most memory a render may take (its supersampled frames, [`render_bytes`]): 2.5 GB, so
+/// that a render fits a 4 GB address space with the mesh beside it.
+pub const MAX_RENDER_BYTES: u64 = 2_500_000_000;
+
+/// The memory `panels` panels of `pw × ph` pixels take while they are drawn, all at once (the
+/// panels are drawn in parallel): per supersample a triangle index, barycentric coordinates,
+/// a depth and a colour (32 bytes; 3×3 supersamples per pixel up to 0.7 Mpixel, 2×2 above),
+/// and the final image (3 bytes per pixel).
+pub fn render_bytes(pw: u32, ph: u32, panels: usize) -> u64 {
+    let px = pw as u64 * ph as u64;
+    let ss = if px <= 700_000 { 9 } else { 4 };
+    panels as u64 * px * (ss * 32 + 3)
+}
+
 /// Lays `panels` out in a grid of `columns` columns filling `width × height` pixels.
+///
+/// Errors ([`Error::Usage`]): a side outside 64–16384 pixels, panels under 64×64, a render
+/// that would take more than [`MAX_RENDER_BYTES`], normal deviation without `N*`.
 pub fn render_panels(panels: &[Panel<'_>], columns: usize, width: u32, height: u32) -> Result<Image> {
     if panels.is_empty() {
         return Err(Error::usage("nothing to render: no panels"));
@@ -430,6 +447,17 @@ pub fn render_panels(panels: &[Panel<'_>], columns: usize, width: u32, height: u
         )));
     }
     let (pw, ph) = (width / columns as u32, height / rows as u32);
+    let bytes = render_bytes(pw, ph, panels.len());
+    if bytes > MAX_RENDER_BYTES {
+        return Err(Error::usage(format!(
+            "image size {width}x{height} would take about {:.1} GB to render (supersampled frames), more than the \
+             {:.1} GB allowed; give a smaller size (about {}x{} fits)",
+            bytes as f64 / 1e9,
+            MAX_RENDER_BYTES as f64 / 1e9,
+            (width as f64 * (MAX_RENDER_BYTES as f64 / bytes as f64).sqrt()) as u32,
+            (height as f64 * (MAX_RENDER_BYTES as f64 / bytes as f64).sqrt()) as u32,
+        )));
+    }
     if pw < 64 || ph < 64 {
         return Err(Error::usage(format!(
             "image size {width}x{height} is too small for {} panels ({columns} columns): each panel needs 64x64 pixels",

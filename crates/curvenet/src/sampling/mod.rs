@@ -103,6 +103,13 @@ pub struct SampleOptions {
     pub crease_angle: Option<f64>,
 }
 
+/// The largest sample spacing [`sample_mesh`] takes, relative to the mesh's bounding-box
+/// diagonal (the default is 1/200).
+pub const MAX_SPACING_RELATIVE: f64 = 0.05;
+
+/// The most section planes per axis [`sample_mesh`] takes.
+pub const MAX_PLANES: usize = 1000;
+
 /// The curves [`sample_mesh`] draws on the mesh.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum CurveFamily {
@@ -272,8 +279,8 @@ struct Scales {
 impl Scales {
     /// The sizes for a mesh with box `bbox` and the options `opts`.
     ///
-    /// Errors: [`Error::Usage`] for a spacing that is not a positive distance or below 1e-6 of
-    /// the box diagonal.
+    /// Errors: [`Error::Usage`] for a spacing that is not a positive distance, below 1e-6 of
+    /// the box diagonal or above [`MAX_SPACING_RELATIVE`] of it.
     fn new(bbox: Aabb, opts: &SampleOptions) -> Result<Scales> {
         let diag = bbox.diagonal();
         let spacing = opts.spacing.unwrap_or(SampleOptions::DEFAULT_SPACING_RELATIVE * diag);
@@ -283,6 +290,13 @@ impl Scales {
         if spacing * 1e6 < diag {
             return Err(Error::usage(format!(
                 "sample spacing (`spacing`) {spacing} is below 1e-6 of the mesh's size {diag:.4e}; the network would be too large"
+            )));
+        }
+        if spacing > MAX_SPACING_RELATIVE * diag {
+            return Err(Error::usage(format!(
+                "sample spacing (`spacing`) {spacing} is above {MAX_SPACING_RELATIVE} of the mesh's size {diag:.4e}: \
+                 the sections would have too few samples to cross and to follow the mesh; give at most {:.4e}",
+                MAX_SPACING_RELATIVE * diag
             )));
         }
         let snap = SampleOptions::SNAP_SPACING * spacing;
@@ -297,6 +311,12 @@ impl Scales {
 ///
 /// Errors: [`Error::Usage`] naming the option.
 fn check_options(opts: &SampleOptions) -> Result<()> {
+    if let Some(&p) = opts.planes.iter().find(|&&p| p > MAX_PLANES) {
+        return Err(Error::usage(format!(
+            "{p} section planes per axis (`planes`) is more than {MAX_PLANES}: the sections would crowd within the \
+             sample spacing; give fewer planes"
+        )));
+    }
     if opts.planes.iter().sum::<usize>() == 0 {
         return Err(Error::usage("no section planes: give at least one plane count (`planes`) above 0"));
     }

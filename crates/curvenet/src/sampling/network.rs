@@ -78,7 +78,7 @@ pub(super) fn assemble(
 /// degrees from the normals of both its neighbours while they are less than half as far from
 /// each other, comes from a folded mesh face (a flap or sliver, often on a scanned mesh's
 /// boundary): a surface's normal is across every curve on it and turns smoothly away from
-/// creases. [`repair_folded_normals`] replaces it.
+/// creases. `curvenet sample` replaces it by the nearest good normal on the curve.
 pub const FOLDED_NORMAL_DEG: f64 = 45.0;
 
 /// Replaces each normal of `normals` (empty: nothing to do) that comes from a folded face

@@ -149,6 +149,12 @@ pub fn fit(positions: &[DVec3], faces: &[[u32; 3]], o: &FitOptions) -> Result<(C
     if !(1..=3).contains(&o.order) {
         return Err(Error::usage(format!("order {} is not 1, 2 or 3", o.order)));
     }
+    if !(o.angle.is_finite() && (0.0..=180.0).contains(&o.angle)) {
+        return Err(Error::usage(format!("`angle` {} is not in [0, 180] degrees", o.angle)));
+    }
+    if let Some(t) = o.reduce.filter(|t| !(t.is_finite() && *t > 0.0)) {
+        return Err(Error::usage(format!("`reduce` {t} is not a positive tolerance")));
+    }
     let n = positions.len();
     let feature = match o.curvature_fraction {
         None => feature_vertices(positions, faces, o.angle),
@@ -360,6 +366,14 @@ pub fn resurface(model: &CauchyModel) -> Result<Vec<DVec3>> {
         if f.iter().any(|&v| v as usize >= n) {
             return Err(Error::input(format!("model face {f:?} names a vertex ≥ {n}")));
         }
+    }
+    if model.constraints.is_empty() {
+        return Err(Error::input(
+            "the model has no Cauchy constraints: nothing fixes its shape (it would re-surface to a point)",
+        ));
+    }
+    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(Error::input(format!("model vertex {i} has a non-finite coordinate")));
     }
     let mut roles = vec![Role::Free; n];
     for &c in &model.constraints {

@@ -16,6 +16,7 @@
 pub mod cholesky;
 mod kernels;
 pub mod lu;
+pub mod memory;
 pub mod ordering;
 pub mod sparse;
 pub mod system;

@@ -31,6 +31,17 @@ impl GhostBasis {
                 "the ghost basis would hold {nf} × {ng} entries (limit {MAX_BASIS_ENTRIES}); use a coarser mesh"
             )));
         }
+        // The dense basis (8 bytes per entry) and a block being solved: refused before it is
+        // allocated when the memory is not there (an allocation failure would abort).
+        let need = 8.0 * nf as f64 * (ng as f64 + 256.0) + 100e6;
+        if let Some(have) = crate::solve::memory::available_memory(None).filter(|&have| need > have) {
+            return Err(Error::memory(format!(
+                "the ghost basis ({nf} free vertices × {ng} ghosts) would take about {:.2} GB, more than the memory \
+                 available ({:.2} GB); use a coarser mesh, fewer feature curves, or leave the optimisation out",
+                need / 1e9,
+                have / 1e9
+            )));
+        }
         let zero = vec![DVec3::ZERO; ng];
         let mut k = system.rhs(positions, &zero);
         f.solve_in_place(&mut k);
