@@ -123,7 +123,9 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     ``soft`` (soft curve constraints, in input sample spacings), ``iterations`` (3D-operator
     iterations, default 2), and the keyword-only ``patching``, ``inner_steps``,
     ``tolerance``, ``normal_prior``, ``energy``, ``guide_area``, ``guide_updates``, ``w1``,
-    ``snap``, ``order``, ``ghost_updates``. With ``method="cauchy"`` a network read from JSON
+    ``snap``, ``max_memory`` (bytes or ``"4G"``; a run whose estimated peak exceeds it, or the
+    memory available, raises ``MemoryError`` before it starts), ``order``, ``ghost_updates``.
+    With ``method="cauchy"`` a network read from JSON
     keeps its per-curve ``kind``, ``sharpness`` and ``stretch``.
 
     ``info``: the run's statistics as ``curvenet surface --stats`` writes them (``vertices``,

@@ -355,3 +355,14 @@ def test_crease_curves_as_five_tuples(tmp_path):
     broken[creases[0]] = (p, n, c, b, r[:-1])
     with pytest.raises(ValueError, match=f"curve {creases[0]}"):
         curvenet.surface(curvenet.Network(broken), vertices=2000)
+
+
+def test_runs_too_large_for_the_memory_raise_memory_error():
+    """The memory budget: a run whose estimated peak exceeds ``max_memory`` (or the memory
+    available) raises MemoryError before it allocates, naming a vertex count that fits."""
+    net = curvenet.example("sphere")
+    with pytest.raises(MemoryError, match="not enough memory.*vertices"):
+        curvenet.surface(net, vertices=10**6, max_memory="1G")
+    # Within the budget the same call runs.
+    V, F, info = curvenet.surface(net, vertices=2000, max_memory="1G")
+    assert len(V) > 1000

@@ -309,6 +309,15 @@ fn bytes(v: &str) -> Option<f64> {
     (x.is_finite() && x > 0.0).then_some(x)
 }
 
+/// The most iterations, inner steps or updates an option takes: each one is a solve, and the
+/// iterations stop at convergence (`tolerance`) well before.
+pub const MAX_ITERATION_COUNT: usize = 1000;
+
+/// A count of iterations or updates: a whole number up to [`MAX_ITERATION_COUNT`].
+fn bounded_count(v: &str) -> std::result::Result<usize, &'static str> {
+    count(v).ok().filter(|&n| n <= MAX_ITERATION_COUNT).ok_or("a whole number from 0 to 1000")
+}
+
 fn count(v: &str) -> std::result::Result<usize, &'static str> {
     v.parse::<usize>().map_err(|_| "a whole number ≥ 0")
 }
@@ -413,7 +422,7 @@ pub const OPTIONS: &[OptionSpec] = &[
         unset: None,
         aliases: &[],
         set: |o, v| {
-            o.iterate.iterations = count(v)?;
+            o.iterate.iterations = bounded_count(v)?;
             Ok(())
         },
         get: |o| Some(o.iterate.iterations.to_string()),
@@ -427,7 +436,7 @@ pub const OPTIONS: &[OptionSpec] = &[
         unset: None,
         aliases: &[],
         set: |o, v| {
-            o.iterate.inner_steps = count(v)?;
+            o.iterate.inner_steps = bounded_count(v)?;
             Ok(())
         },
         get: |o| Some(o.iterate.inner_steps.to_string()),
@@ -496,7 +505,7 @@ pub const OPTIONS: &[OptionSpec] = &[
         unset: None,
         aliases: &[],
         set: |o, v| {
-            o.normal_control.guide_updates = count(v)?;
+            o.normal_control.guide_updates = bounded_count(v)?;
             Ok(())
         },
         get: |o| Some(o.normal_control.guide_updates.to_string()),
@@ -584,7 +593,7 @@ pub const OPTIONS: &[OptionSpec] = &[
         unset: None,
         aliases: &[],
         set: |o, v| {
-            o.cauchy.ghost_updates = count(v)?;
+            o.cauchy.ghost_updates = bounded_count(v)?;
             Ok(())
         },
         get: |o| Some(o.cauchy.ghost_updates.to_string()),

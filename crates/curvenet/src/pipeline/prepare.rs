@@ -164,6 +164,21 @@ pub(super) fn check_options(options: &Options) -> Result<()> {
             return Err(Error::usage(format!("snapping tolerance {s} is not a positive distance")));
         }
     }
+    if let Some(m) = options.mesh.max_memory.filter(|m| !(m.is_finite() && *m > 0.0)) {
+        return Err(Error::usage(format!("`max_memory` {m} is not a positive size in bytes")));
+    }
+    let counts = [
+        ("iterations", options.iterate.iterations),
+        ("inner_steps", options.iterate.inner_steps),
+        ("guide_updates", options.normal_control.guide_updates),
+        ("ghost_updates", options.cauchy.ghost_updates),
+    ];
+    let max = super::options::MAX_ITERATION_COUNT;
+    if let Some((name, n)) = counts.iter().find(|(_, n)| *n > max) {
+        return Err(Error::usage(format!(
+            "`{name}` {n} is more than {max} (the iterations stop at convergence long before)"
+        )));
+    }
     Ok(())
 }
 
