@@ -109,6 +109,16 @@ fn svg_time_bombs_end_within_five_seconds() {
     let (o, took) = run_bounded(&["inflate", &nested, "-o", out, "-q"], Duration::from_secs(30));
     assert!(took <= Duration::from_secs(5), "nested groups: {took:?}");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // Coordinates far out (1e300) or not numbers: an error naming the line (and column).
+    let far = write("far.svg", format!("{head}\n<circle cx=\"1e300\" cy=\"50\" r=\"40\"/>\n</svg>"));
+    let nan =
+        write("nan.svg", format!("{head}\n<circle cx=\"50\" cy=\"50\" r=\"40\"/>\n<path d=\"M 1 1 L 2 NaN\"/></svg>"));
+    for (file, expect) in [(&far, "far.svg:2:"), (&nan, "nan.svg:3:")] {
+        let (o, _) = run_bounded(&["inflate", file, "-o", out], Duration::from_secs(30));
+        let msg = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{msg}");
+        assert!(msg.contains(expect), "{msg}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

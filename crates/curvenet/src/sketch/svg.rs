@@ -36,6 +36,11 @@ use roxmltree::{Attribute, Document, Node, NodeId, ParsingOptions};
 use std::collections::HashMap;
 use std::str::FromStr;
 
+/// The largest coordinate (user units, after the transforms) a sketch may have: the
+/// triangulation (spade) refuses points beyond about 1e150 with a bare "too large", and a
+/// drawing with such coordinates is a broken file, not a design.
+pub const MAX_COORDINATE: f64 = 1e15;
+
 /// One flattened outline of a sketch.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SketchPath {
@@ -444,6 +449,17 @@ impl<'a, 'i> Reader<'a, 'i> {
                 if m == Affine::IDENTITY { points } else { points.into_iter().map(|p| m.apply(p)).collect() };
             if !points.iter().all(|p| p.is_finite()) {
                 return Err(self.error(node.range().start, format!("<{}>: the coordinates overflow", name(node))));
+            }
+            if let Some(p) = points.iter().find(|p| p.x.abs().max(p.y.abs()) > MAX_COORDINATE) {
+                return Err(self.error(
+                    node.range().start,
+                    format!(
+                        "<{}>: a point ({:e}, {:e}) lies beyond ±{MAX_COORDINATE:e}: too far out to triangulate; scale the drawing",
+                        name(node),
+                        p.x,
+                        p.y
+                    ),
+                ));
             }
             self.out.push(SketchPath {
                 // SVG's y axis points down: flip it.
