@@ -388,17 +388,22 @@ pub fn sharp_edges(positions: &[DVec3], faces: &[[u32; 3]], angle: f64) -> (Vec<
 /// default auto-smooth angle; a crease found by `curvenet sample` is at least this sharp.
 pub const SHARP_SHADING_DEG: f64 = 30.0;
 
+/// What [`split_normals`] returns.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SplitNormals {
+    /// The normals: one per vertex, then one per extra sector of a vertex on sharp edges.
+    pub normals: Vec<DVec3>,
+    /// Per face corner, the index of its normal.
+    pub corners: Vec<[u32; 3]>,
+    /// Per normal, the vertex it belongs to.
+    pub vertex: Vec<u32>,
+}
+
 /// Normals split at sharp edges, for display (OBJ `f v//vn`, renders): edges between two faces
 /// whose normals are more than `angle` (radians) apart are sharp, and each sector of faces
 /// around a vertex on them ([`sectors`]) gets its own angle-weighted normal, appended after
-/// `normals` (one per vertex, kept for the vertices on no sharp edge). Returns all normals and
-/// per face corner the index of its normal.
-pub fn split_normals(
-    faces: &[[u32; 3]],
-    positions: &[DVec3],
-    normals: &[DVec3],
-    angle: f64,
-) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+/// `normals` (one per vertex, kept for the vertices on no sharp edge).
+pub fn split_normals(faces: &[[u32; 3]], positions: &[DVec3], normals: &[DVec3], angle: f64) -> SplitNormals {
     let face_normal = |f: &[u32; 3]| {
         let p = f.map(|i| positions[i as usize]);
         (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero()
@@ -407,7 +412,7 @@ pub fn split_normals(
     let sharp = |a: u32, b: u32| sharp.contains(&(a.min(b), a.max(b)));
     let (corners, of) = sectors(positions.len(), faces, sharp);
     if of.len() == positions.len() {
-        return (normals.to_vec(), faces.to_vec());
+        return SplitNormals { normals: normals.to_vec(), corners: faces.to_vec(), vertex: of };
     }
     // The sector normals of the vertices on sharp edges (angle-weighted over their faces).
     let mut split = vec![DVec3::ZERO; of.len()];
@@ -438,7 +443,7 @@ pub fn split_normals(
             }
         }
     }
-    (out, corners)
+    SplitNormals { normals: out, corners, vertex: of }
 }
 
 #[cfg(test)]

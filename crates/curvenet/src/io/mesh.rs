@@ -210,7 +210,7 @@ fn write_obj(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
     let angle = crate::operators::SHARP_SHADING_DEG.to_radians();
     let split = m.normals.map(|ns| crate::operators::split_normals(m.faces, m.positions, ns, angle));
     let (normals, corners): (&[DVec3], &[[u32; 3]]) = match &split {
-        Some((ns, cs)) => (ns, cs),
+        Some(s) => (&s.normals, &s.corners),
         None => (&[], m.faces),
     };
     // One stream of records: the positions, the normals, then the faces.

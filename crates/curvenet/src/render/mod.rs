@@ -196,24 +196,17 @@ impl Scene {
     /// keep the vertex's curvature and `N*`.
     pub fn split_at_sharp_edges(self) -> Scene {
         let angle = crate::operators::SHARP_SHADING_DEG.to_radians();
-        let (normals, corners) = crate::operators::split_normals(&self.faces, &self.positions, &self.normals, angle);
-        if normals.len() == self.positions.len() {
-            return Scene { normals, ..self };
+        let split = crate::operators::split_normals(&self.faces, &self.positions, &self.normals, angle);
+        if split.normals.len() == self.positions.len() {
+            return Scene { normals: split.normals, ..self };
         }
-        // The vertex each normal belongs to (split copies after the originals).
-        let mut of: Vec<u32> = (0..self.positions.len() as u32).collect();
-        of.resize(normals.len(), 0);
-        for (f, c) in self.faces.iter().zip(&corners) {
-            for k in 0..3 {
-                of[c[k] as usize] = f[k];
-            }
-        }
+        let of = split.vertex;
         let copy = |v: &[f64]| of.iter().map(|&i| v[i as usize]).collect::<Vec<f64>>();
         let copy3 = |v: &[DVec3]| of.iter().map(|&i| v[i as usize]).collect::<Vec<DVec3>>();
         Scene {
             positions: copy3(&self.positions),
-            faces: corners,
-            normals,
+            faces: split.corners,
+            normals: split.normals,
             mean_curvature: copy(&self.mean_curvature),
             propagated_normals: self.propagated_normals.as_deref().map(copy3),
             curves: self.curves,

@@ -32,14 +32,13 @@ pub(super) fn assemble(
     let mut curves = Vec::new();
     let loops = loops.into_iter().map(|(t, pn)| (t, Some(pn)));
     for (t, pn) in pieces.into_iter().map(|t| (t, None)).chain(loops) {
-        let (mut points, mut normals, normals_right) = pn.unwrap_or_else(|| {
+        let (mut points, mut normals, mut normals_right) = pn.unwrap_or_else(|| {
             let (p, n) = resample(&t.samples, t.closed, scales.spacing, opts.shared_nodes);
             (p, n, Vec::new())
         });
         if normals_right.is_empty() {
             report.hairpins += remove_hairpins(&mut points, &mut normals, t.closed, scales.near);
         }
-        let mut normals_right = normals_right;
         report.folded_normals += repair_folded_normals(&points, &mut normals, t.closed);
         report.folded_normals += repair_folded_normals(&points, &mut normals_right, t.closed);
         let need = if t.closed { 3 } else { 2 };

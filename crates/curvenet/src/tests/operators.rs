@@ -190,7 +190,8 @@ fn a_cube_split_at_its_edges_has_three_sectors_per_corner_with_the_face_normals(
     assert_eq!((same, of.len()), (f.clone(), 8));
 
     let smooth = angle_weighted_normals(&f, &p);
-    let (normals, corners) = split_normals(&f, &p, &smooth, 30f64.to_radians());
+    let SplitNormals { normals, corners, vertex } = split_normals(&f, &p, &smooth, 30f64.to_radians());
+    assert_eq!(vertex.len(), normals.len());
     for (fi, c) in corners.iter().enumerate() {
         let q = f[fi].map(|i| p[i as usize]);
         let face = (q[1] - q[0]).cross(q[2] - q[0]).normalize();
@@ -199,6 +200,6 @@ fn a_cube_split_at_its_edges_has_three_sectors_per_corner_with_the_face_normals(
         }
     }
     // Above 90°, nothing is split: the corners keep the smooth normals.
-    let (kept, corners) = split_normals(&f, &p, &smooth, 100f64.to_radians());
+    let SplitNormals { normals: kept, corners, .. } = split_normals(&f, &p, &smooth, 100f64.to_radians());
     assert_eq!((kept, corners), (smooth, f));
 }
