@@ -292,3 +292,56 @@ fn a_densely_sampled_circle_surfaces_in_seconds() {
     assert!(zmax < 1e-9, "the disk is not flat: |z| up to {zmax:e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// One OBJ `l` line of 5·10⁵ indices (a densely sampled closed curve without normals): read and
+/// surfaced in seconds (token columns were counted from the line's start: quadratic, 30 s).
+#[test]
+fn a_long_polyline_line_is_read_in_linear_time() {
+    let dir = scratch("polyline");
+    let n = 500_000;
+    let mut text = String::with_capacity(n * 40);
+    for i in 0..n {
+        let t = std::f64::consts::TAU * i as f64 / n as f64;
+        text.push_str(&format!("v {:.9} {:.9} {:.9}\n", t.cos(), t.sin(), 0.3 * (2.0 * t).sin()));
+    }
+    text.push('l');
+    for i in 0..=n {
+        text.push_str(&format!(" {}", i % n + 1));
+    }
+    text.push('\n');
+    let input = dir.join("loop.obj");
+    std::fs::write(&input, text).unwrap();
+    let out = dir.join("patch.ply");
+    let (o, took) =
+        run_bounded(&["surface", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "-q"], Duration::from_secs(60));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(took < Duration::from_secs(15), "{took:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A file whose parse would not fit in the process's memory (30 MB of `v 0 0 0` under a 1.5 GB
+/// address-space limit: 270 MB to parse, 200 MB available) is refused before it is read: exit 2,
+/// a message naming the estimate — not an allocation abort.
+#[cfg(unix)]
+#[test]
+fn an_input_too_large_for_memory_is_refused_before_reading() {
+    let dir = scratch("parse-memory");
+    let input = dir.join("points.obj");
+    let mut text = "v 0 0 0\n".repeat(30 << 17);
+    text.push_str("f 1 2 3\n");
+    std::fs::write(&input, text).unwrap();
+    let o = Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v 1500000 && exec '{}' eval '{}' --truth '{}'",
+            env!("CARGO_BIN_EXE_curvenet"),
+            input.display(),
+            input.display()
+        ))
+        .output()
+        .unwrap();
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{msg}");
+    assert!(msg.contains("MB of memory") && msg.contains("points.obj"), "{msg}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

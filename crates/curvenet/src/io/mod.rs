@@ -97,7 +97,30 @@ pub fn read_input(path: &Path, kind: InputKind, max: u64) -> Result<Vec<u8>> {
         }
     }
     if bytes.len() as u64 == HEAD.min(max + 1) {
-        file.take(max + 1 - bytes.len() as u64).read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
+        // A regular file's size is known: refuse one whose parse would not fit in memory, and
+        // reserve its bytes fallibly. Other inputs (pipes) grow in fallible steps.
+        let size = file.metadata().ok().filter(|m| m.is_file()).map(|m| m.len().min(max + 1));
+        if let Some(size) = size {
+            check_parse_memory(&source, size)?;
+        }
+        let mut rest = (&mut file).take(max + 1 - bytes.len() as u64);
+        loop {
+            let want = size.map_or(1 << 20, |s| s.saturating_sub(bytes.len() as u64).max(1 << 16)) as usize;
+            bytes.try_reserve(want).map_err(|_| {
+                Error::memory(format!(
+                    "{source}: out of memory reading the input after {} MB",
+                    bytes.len() >> 20
+                ))
+            })?;
+            let start = bytes.len();
+            let spare = bytes.capacity() - start;
+            bytes.resize(start + spare, 0);
+            let n = read_full(&mut rest, &mut bytes[start..]).map_err(|e| Error::io(path, e))?;
+            bytes.truncate(start + n);
+            if n < spare {
+                break;
+            }
+        }
     }
     if bytes.len() as u64 > max {
         return Err(Error::input(format!(
@@ -108,16 +131,56 @@ pub fn read_input(path: &Path, kind: InputKind, max: u64) -> Result<Vec<u8>> {
     Ok(bytes)
 }
 
+/// Reads into `buf` until it is full or the input ends; returns the bytes read.
+fn read_full(r: &mut impl std::io::Read, buf: &mut [u8]) -> std::io::Result<usize> {
+    let mut n = 0;
+    while n < buf.len() {
+        match r.read(&mut buf[n..]) {
+            Ok(0) => break,
+            Ok(k) => n += k,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(n)
+}
+
+/// Peak memory of parsing an input, per byte of the file: its bytes, the text, and the parsed
+/// vectors while they grow. Measured 5–8.6 with `curvenet.read_mesh` / `read_network` on the
+/// densest files (one-digit coordinates: `v 0 0 0` OBJ, OFF, JSON networks; docs/robustness.md).
+pub const PARSE_BYTES_PER_INPUT_BYTE: f64 = 9.0;
+
+/// Refuses a file of `size` bytes whose parse ([`PARSE_BYTES_PER_INPUT_BYTE`]) would exceed
+/// the memory available ([`crate::solve::memory::available_memory`]).
+fn check_parse_memory(source: &str, size: u64) -> Result<()> {
+    let need = size as f64 * PARSE_BYTES_PER_INPUT_BYTE;
+    match crate::solve::memory::available_memory(None) {
+        Some(available) if need > available => Err(Error::memory(format!(
+            "{source}: reading this {:.0} MB file needs about {:.0} MB of memory, more than the {:.0} MB available",
+            size as f64 / 1e6,
+            need / 1e6,
+            available.max(0.0) / 1e6
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// Reads a curve network; the format comes from the extension. The network is returned as
 /// written in the file: call [`Network::validated`] (the pipeline does) to check its values.
 pub fn read_network(path: &Path) -> Result<Network> {
     let format = NetworkFormat::from_path(path)?;
-    let bytes = read_input(path, InputKind::Text, MAX_INPUT_BYTES)?;
-    let text = String::from_utf8(bytes).map_err(|e| {
+    let text = read_text(path, MAX_INPUT_BYTES)?;
+    parse_network(&text, format, &path.display().to_string())
+}
+
+/// Reads a text file as [`read_input`] does, at most `max` bytes; invalid UTF-8 is a parse error
+/// naming its line and column. A UTF-8 byte-order mark stays in the text: parsers skip it.
+pub fn read_text(path: &Path, max: u64) -> Result<String> {
+    let bytes = read_input(path, InputKind::Text, max)?;
+    String::from_utf8(bytes).map_err(|e| {
         let (line, column) = line_col(&e.as_bytes()[..e.utf8_error().valid_up_to()]);
         Error::Parse { path: path.display().to_string(), line, column, message: "file is not valid UTF-8 text".into() }
-    })?;
-    parse_network(&text, format, &path.display().to_string())
+    })
 }
 
 /// Parses a curve network from text; `source` names it in error messages.
@@ -286,6 +349,9 @@ impl<'a> Tokens<'a> {
         let mut rest = Vec::new();
         let bytes = line.as_bytes();
         let mut i = 0;
+        // Columns count characters; counted incrementally (a line of a million indices is
+        // linear, not quadratic).
+        let (mut counted, mut column) = (0, 1);
         while i < bytes.len() {
             if bytes[i].is_ascii_whitespace() {
                 i += 1;
@@ -295,7 +361,9 @@ impl<'a> Tokens<'a> {
             while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
                 i += 1;
             }
-            rest.push((line[..start].chars().count() + 1, &line[start..i]));
+            column += line[counted..start].chars().count();
+            counted = start;
+            rest.push((column, &line[start..i]));
         }
         rest.reverse();
         Tokens { line: line_no, rest }

@@ -433,7 +433,13 @@ impl<'a, 'i> Reader<'a, 'i> {
         self.points_left = pen.left;
         let sharpness = match node.attribute_node("data-sharpness") {
             Some(attr) => match attr.value().trim().parse::<f64>() {
-                Ok(s) if s.is_finite() => Some(s),
+                Ok(s) if s.is_finite() && s.abs() <= 180.0 => Some(s),
+                Ok(s) if s.is_finite() => {
+                    return Err(self.error(
+                        attr.range_value().start,
+                        format!("data-sharpness=\"{}\" is not in [-180, 180] degrees", attr.value()),
+                    ))
+                }
                 _ => {
                     return Err(self.error(
                         attr.range_value().start,

@@ -114,6 +114,7 @@ impl NetworkAttributes {
     /// Reads the optional `kind`, `sharpness` (degrees) and `stretch` fields of a network JSON
     /// text. `source` names the file in messages.
     pub fn from_json(text: &str, source: &str) -> Result<Self> {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let v: Value = serde_json::from_str(text).map_err(|e| Error::Parse {
             path: source.to_string(),
             line: e.line(),
@@ -148,10 +149,14 @@ impl NetworkAttributes {
                 })?,
                 Some(_) => return Err(Error::input(format!("{source}: curve {ci}: \"kind\" must be a string"))),
             };
-            let sharpness = number_or_list(c.get("sharpness"), n, "sharpness", ci, source)?
-                .into_iter()
-                .map(f64::to_radians)
-                .collect();
+            let sharpness = number_or_list(c.get("sharpness"), n, "sharpness", ci, source)?;
+            if let Some(i) = sharpness.iter().position(|&s| s.abs() > 180.0) {
+                return Err(Error::input(format!(
+                    "{source}: curve {ci}: \"sharpness\" {}° at sample {i} is not in [-180, 180] degrees",
+                    sharpness[i]
+                )));
+            }
+            let sharpness = sharpness.into_iter().map(f64::to_radians).collect();
             let stretch = number_or_list(c.get("stretch"), n, "stretch", ci, source)?;
             if let Some(i) = stretch.iter().position(|&s| s <= -1.0) {
                 return Err(Error::input(format!(
@@ -170,8 +175,7 @@ impl NetworkAttributes {
         if path.extension().and_then(|e| e.to_str()).map(|e| e.eq_ignore_ascii_case("json")) != Some(true) {
             return Ok(None);
         }
-        let text =
-            std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.display().to_string(), source: e })?;
+        let text = crate::io::read_text(path, crate::io::MAX_INPUT_BYTES)?;
         Ok(Some(Self::from_json(&text, &path.display().to_string())?))
     }
 }

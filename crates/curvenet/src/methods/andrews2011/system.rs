@@ -255,7 +255,7 @@ impl System {
             }
         }
         if free.is_empty() {
-            return Err(Error::usage("every vertex is constrained: nothing to solve"));
+            return Err(Error::input("every vertex is constrained: nothing to solve (the mesh has no free vertex)"));
         }
         // Ghost lines exist for each Cauchy vertex and each neighbour that expands its one-ring
         // (free or position vertices), numbers 1 ..= k−1.

@@ -285,6 +285,8 @@ fn errors_name_line_and_column() {
     assert!(m.contains("positive"), "{m}");
     let (_, _, m) = error(r#"<svg><path d="M0 0L1 1" data-sharpness="sharp"/></svg>"#);
     assert!(m.contains("data-sharpness"), "{m}");
+    let (_, _, m) = error(r#"<svg><path d="M0 0L1 1" data-sharpness="500"/></svg>"#);
+    assert!(m.contains("[-180, 180]"), "{m}");
     let (_, _, m) = error(r#"<svg><polygon points="0 0 1"/></svg>"#);
     assert!(m.contains("even number"), "{m}");
     let (_, _, m) = error(r#"<svg><g transform="scale(1e300)"><circle r="1e300"/></g></svg>"#);

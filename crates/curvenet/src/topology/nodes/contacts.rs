@@ -210,26 +210,32 @@ pub(super) fn find_contacts(lines: &Polylines, snap: f64) -> crate::error::Resul
     let mut pairs: Vec<(u32, u32)> = Vec::new();
     let limit = MAX_PAIRS_PER_EDGE * edges.len() + 1_000_000;
     for list in grid.values() {
-        // Pairs this cell adds at most: refuse before allocating them.
-        if pairs.len() + list.len() * list.len().saturating_sub(1) / 2 > limit {
-            let (c, _) = edges[list[0] as usize];
-            return Err(crate::error::Error::input(format!(
-                "{} and {} other curve pieces crowd within the snapping tolerance ({snap:.3e}) of one place: the \
-                 curves are too dense there to tell their meetings apart (a tangle of strokes or random segments); \
-                 give a smaller `snap` or clean the curves",
-                lines.labels[c as usize],
-                list.len() - 1
-            ))
-            .curve(c as usize));
-        }
+        // `list` is in edge order, i.e. by curve, then along it. The pairs of one curve that are
+        // the same stretch of it by arc length alone are a run at the start of what follows each
+        // edge: skipped by a binary search, not visited — on densely sampled curves a cell holds
+        // many edges of one pass of a curve, and visiting all their pairs would be quadratic.
         for (i, &ka) in list.iter().enumerate() {
-            for &kb in &list[i + 1..] {
+            let rest = &list[i + 1..];
+            let skip = rest.partition_point(|&kb| along_forward(lines, &edges, ka, kb) <= 4.0 * snap);
+            for &kb in &rest[skip..] {
                 let (ba, bb) = (&boxes[ka as usize], &boxes[kb as usize]);
                 let lo = ba.min.max(bb.min);
                 let hi = ba.max.min(bb.max);
                 if lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z && !same_stretch(lines, &edges, ka, kb, snap) {
                     pairs.push((ka.min(kb), ka.max(kb)));
                 }
+            }
+            // Refuse before the pairs fill memory.
+            if pairs.len() > limit {
+                let (c, _) = edges[ka as usize];
+                return Err(crate::error::Error::input(format!(
+                    "{} and {} other curve pieces crowd within the snapping tolerance ({snap:.3e}) of one place: the \
+                     curves are too dense there to tell their meetings apart (a tangle of strokes or random segments); \
+                     give a smaller `snap` or clean the curves",
+                    lines.labels[c as usize],
+                    list.len() - 1
+                ))
+                .curve(c as usize));
             }
         }
     }
@@ -268,6 +274,18 @@ pub(super) fn find_contacts(lines: &Polylines, snap: f64) -> crate::error::Resul
             .then(x.a.s.total_cmp(&y.a.s))
     });
     Ok(hits)
+}
+
+/// How far along one curve edge `kb` reaches beyond the start of edge `ka` (`kb` after `ka` in
+/// edge order, not going round a loop): a bound of [`same_stretch`]'s distance, monotone in `kb`
+/// over the edges of `ka`'s curve; infinite for another curve.
+fn along_forward(lines: &Polylines, edges: &[(u32, u32)], ka: u32, kb: u32) -> f64 {
+    let ((ca, ea), (cb, eb)) = (edges[ka as usize], edges[kb as usize]);
+    if ca != cb {
+        return f64::INFINITY;
+    }
+    let arcs = &lines.arcs[ca as usize];
+    arcs[eb as usize + 1] - arcs[ea as usize]
 }
 
 /// Edges `ka` and `kb` of one curve whose points are all within `4 snap` of each other along

@@ -27,3 +27,26 @@ fn set_curves_moves_the_attribute_samples() {
     m.set_curves(&[(moved[..2].to_vec(), false)]);
     assert_eq!(m.options.attributes.as_ref().unwrap().curves[0].points, moved);
 }
+
+/// The attribute fields are checked at the door: finite, sharpness within ±180°, stretch > −1;
+/// a byte-order mark is skipped.
+#[test]
+fn attributes_are_checked() {
+    let doc = |extra: &str| {
+        format!("\u{feff}{{\"curves\": [{{\"points\": [[0,0,0],[1,0,0],[0,1,0]], \"closed\": true{extra}}}]}}")
+    };
+    let a = NetworkAttributes::from_json(&doc(", \"sharpness\": 90"), "a.json").unwrap();
+    assert!((a.curves[0].sharpness[1] - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+    for (extra, want) in [
+        (", \"sharpness\": 500", "[-180, 180]"),
+        (", \"sharpness\": [0, -181, 0]", "sample 1"),
+        (", \"stretch\": -1", "≤ −1"),
+        (", \"stretch\": \"big\"", "must be a number"),
+        (", \"sharpness\": [0, 1]", "2 values for 3 samples"),
+    ] {
+        let e = NetworkAttributes::from_json(&doc(extra), "a.json").unwrap_err();
+        let m = e.to_string();
+        assert!(m.contains("a.json: curve 0") && m.contains(want), "{extra}: {m}");
+        assert_eq!(e.exit_code(), 1, "{m}");
+    }
+}
