@@ -366,3 +366,24 @@ def test_runs_too_large_for_the_memory_raise_memory_error():
     # Within the budget the same call runs.
     V, F, info = curvenet.surface(net, vertices=2000, max_memory="1G")
     assert len(V) > 1000
+
+
+def test_outputs_open_in_other_tools(tmp_path):
+    """libigl reads the PLY (it refuses mixed property types), trimesh reads the PLY and the
+    GLB (positions, faces, the mean curvature as a custom attribute)."""
+    igl = pytest.importorskip("igl")
+    trimesh = pytest.importorskip("trimesh")
+    net = tmp_path / "sphere.json"
+    subprocess.run([str(CLI), "example", "sphere", "-o", str(net)], check=True, capture_output=True)
+    for ext in ["ply", "glb"]:
+        subprocess.run([str(CLI), "surface", str(net), "-o", str(tmp_path / f"s.{ext}"), "-q"], check=True)
+    V, F = igl.read_triangle_mesh(str(tmp_path / "s.ply"))
+    assert V.shape[1] == 3 and F.shape[1] == 3 and len(F) > 1000
+    assert np.abs(np.linalg.norm(V, axis=1) - 1).max() < 2e-3
+    ply = trimesh.load(str(tmp_path / "s.ply"))
+    assert ply.vertices.shape == V.shape and len(ply.faces) == len(F)
+    glb = trimesh.load(str(tmp_path / "s.glb"), force="mesh")
+    assert len(glb.faces) == len(F) and glb.is_watertight
+    assert np.abs(np.linalg.norm(glb.vertices, axis=1) - 1).max() < 2e-3
+    H = np.asarray(glb.vertex_attributes["_MEAN_CURVATURE"]).ravel()
+    assert len(H) == len(glb.vertices) and abs(np.median(H) - 1) < 0.02

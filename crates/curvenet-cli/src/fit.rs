@@ -47,7 +47,7 @@ pub struct FitArgs {
 pub struct ResurfaceArgs {
     /// A model written by `curvenet fit`.
     input: PathBuf,
-    /// Output mesh (.ply, .obj, .off).
+    /// Output mesh (.ply, .obj, .off, .glb).
     #[arg(short, long)]
     output: PathBuf,
 }

@@ -13,7 +13,7 @@ pub struct InflateArgs {
     /// Input sketch (.svg): the largest closed path bounds the surface; paths with
     /// class="crease" become creases, the others inactive curves.
     input: PathBuf,
-    /// Output mesh (.ply, .obj, .off). Written only if the whole run succeeds.
+    /// Output mesh (.ply, .obj, .off, .glb). Written only if the whole run succeeds.
     #[arg(short, long)]
     output: PathBuf,
     /// Laplacian order (1, 2 or 3).

@@ -42,7 +42,8 @@ Exit codes: 0 success, 1 bad input (malformed file, invalid network, non-manifol
 Network formats (by extension): .json (reference), .obj (v/vn/l, group \"boundary\"), .net.
 Normals may be left out (JSON: no \"normals\" key; OBJ: no vn, also an edge soup of l lines):
 they are then inferred from the curves' shape (see `curvenet normals`).
-Mesh formats (by extension): .ply (binary, with normals, mean curvature, curve flag), .obj, .off.
+Mesh formats (by extension): .ply (binary, with normals, mean curvature, curve flag), .obj, .off;
+.glb (binary glTF 2.0, for three.js and Blender) is written, not read.
 See README.md for the formats and the method.";
 
 #[derive(Parser)]

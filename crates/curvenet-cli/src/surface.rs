@@ -13,7 +13,7 @@ use std::time::Instant;
 pub struct SurfaceArgs {
     /// Input curve network (.json, .obj, .net).
     input: PathBuf,
-    /// Output mesh (.ply, .obj, .off). Written only if the whole run succeeds.
+    /// Output mesh (.ply, .obj, .off, .glb). Written only if the whole run succeeds.
     #[arg(short, long)]
     output: PathBuf,
     #[command(flatten)]

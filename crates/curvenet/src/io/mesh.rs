@@ -63,6 +63,8 @@ enum MeshFormat {
     Obj,
     Ply,
     Off,
+    /// Binary glTF: written, not read.
+    Glb,
 }
 
 fn mesh_format(path: &Path) -> Result<MeshFormat> {
@@ -70,7 +72,11 @@ fn mesh_format(path: &Path) -> Result<MeshFormat> {
         "obj" => Ok(MeshFormat::Obj),
         "ply" => Ok(MeshFormat::Ply),
         "off" => Ok(MeshFormat::Off),
-        ext => Err(Error::usage(format!("{}: unknown mesh format \".{ext}\"; use .obj, .ply or .off", path.display()))),
+        "glb" => Ok(MeshFormat::Glb),
+        ext => Err(Error::usage(format!(
+            "{}: unknown mesh format \".{ext}\"; use .obj, .ply, .off or .glb (written only)",
+            path.display()
+        ))),
     }
 }
 
@@ -79,7 +85,7 @@ pub fn check_mesh_path(path: &Path) -> Result<()> {
     mesh_format(path).map(|_| ())
 }
 
-/// Writes a mesh; the format comes from the extension (`.obj`, `.ply`, `.off`). Atomic: on
+/// Writes a mesh; the format comes from the extension (`.obj`, `.ply`, `.off`, `.glb`). Atomic: on
 /// failure `path` is left as it was.
 pub fn write_mesh(path: &Path, mesh: MeshData<'_>) -> Result<()> {
     stage_mesh(path, mesh)?.commit()
@@ -119,6 +125,7 @@ pub fn stage_mesh(path: &Path, mesh: MeshData<'_>) -> Result<Staged> {
         MeshFormat::Obj => write_obj(w, mesh),
         MeshFormat::Ply => write_ply(w, mesh),
         MeshFormat::Off => write_off(w, mesh),
+        MeshFormat::Glb => super::glb::write_glb(w, mesh),
     })
 }
 
@@ -251,21 +258,25 @@ fn write_off(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
     })
 }
 
+/// Binary PLY. Every vertex property is a `double`, the curve flag too (0 or 1): libigl's
+/// `read_triangle_mesh` refuses a file whose positions and normals differ in type, and one
+/// whose other properties (read together as extra data) do; trimesh, Open3D, MeshLab and
+/// Blender read doubles.
 fn write_ply(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
     writeln!(w, "ply\nformat binary_little_endian 1.0\ncomment written by curvenet")?;
     writeln!(w, "element vertex {}", m.positions.len())?;
     writeln!(w, "property double x\nproperty double y\nproperty double z")?;
     if m.normals.is_some() {
-        writeln!(w, "property float nx\nproperty float ny\nproperty float nz")?;
+        writeln!(w, "property double nx\nproperty double ny\nproperty double nz")?;
     }
     if m.mean_curvature.is_some() {
-        writeln!(w, "property float mean_curvature")?;
+        writeln!(w, "property double mean_curvature")?;
     }
     if m.curve_vertex.is_some() {
-        writeln!(w, "property uchar curve")?;
+        writeln!(w, "property double curve")?;
     }
     if m.propagated_normals.is_some() {
-        writeln!(w, "property float pnx\nproperty float pny\nproperty float pnz")?;
+        writeln!(w, "property double pnx\nproperty double pny\nproperty double pnz")?;
     }
     writeln!(w, "element face {}", m.faces.len())?;
     writeln!(w, "property list uchar int vertex_indices\nend_header")?;
@@ -278,18 +289,18 @@ fn write_ply(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
         }
         if let Some(ns) = m.normals {
             for c in [ns[i].x, ns[i].y, ns[i].z] {
-                buf.extend_from_slice(&(c as f32).to_le_bytes());
+                buf.extend_from_slice(&c.to_le_bytes());
             }
         }
         if let Some(h) = m.mean_curvature {
-            buf.extend_from_slice(&(h[i] as f32).to_le_bytes());
+            buf.extend_from_slice(&h[i].to_le_bytes());
         }
         if let Some(c) = m.curve_vertex {
-            buf.push(c[i] as u8);
+            buf.extend_from_slice(&(if c[i] { 1.0f64 } else { 0.0 }).to_le_bytes());
         }
         if let Some(pn) = m.propagated_normals {
             for c in [pn[i].x, pn[i].y, pn[i].z] {
-                buf.extend_from_slice(&(c as f32).to_le_bytes());
+                buf.extend_from_slice(&c.to_le_bytes());
             }
         }
         w.write_all(&buf)?;
@@ -305,9 +316,21 @@ fn write_ply(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
     Ok(())
 }
 
+/// The format of a mesh to read: GLB is written only (a usage error).
+fn readable_format(path: &Path) -> Result<MeshFormat> {
+    match mesh_format(path)? {
+        MeshFormat::Glb => Err(Error::usage(format!(
+            "{}: GLB is an output format; read meshes from .obj, .ply or .off",
+            path.display()
+        ))),
+        f => Ok(f),
+    }
+}
+
 /// Reads a triangle mesh (`.obj`, `.off`, `.ply`); polygons are fan-triangulated.
 pub fn read_mesh(path: &Path) -> Result<MeshFile> {
-    let kind = if mesh_format(path)? == MeshFormat::Ply { super::InputKind::Ply } else { super::InputKind::Text };
+    let format = readable_format(path)?;
+    let kind = if format == MeshFormat::Ply { super::InputKind::Ply } else { super::InputKind::Text };
     let bytes = super::read_input(path, kind, super::MAX_INPUT_BYTES)?;
     parse_mesh(&bytes, path, &path.display().to_string())
 }
@@ -315,7 +338,7 @@ pub fn read_mesh(path: &Path) -> Result<MeshFile> {
 /// Parses a triangle mesh from the bytes of a file named `name` (its extension gives the
 /// format); `source` names it in messages. What [`read_mesh`] does after reading the file.
 pub fn parse_mesh(bytes: &[u8], name: &Path, source: &str) -> Result<MeshFile> {
-    let format = mesh_format(name)?;
+    let format = readable_format(name)?;
     let source = source.to_string();
     let mesh = match format {
         MeshFormat::Ply => read_ply(bytes, &source)?,

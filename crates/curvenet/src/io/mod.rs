@@ -5,6 +5,7 @@
 //! Every writer is atomic: it writes a temporary file beside the target and renames it, so a
 //! failed run never leaves a half-written file.
 
+mod glb;
 mod json;
 mod mesh;
 mod net;
@@ -107,10 +108,7 @@ pub fn read_input(path: &Path, kind: InputKind, max: u64) -> Result<Vec<u8>> {
         loop {
             let want = size.map_or(1 << 20, |s| s.saturating_sub(bytes.len() as u64).max(1 << 16)) as usize;
             bytes.try_reserve(want).map_err(|_| {
-                Error::memory(format!(
-                    "{source}: out of memory reading the input after {} MB",
-                    bytes.len() >> 20
-                ))
+                Error::memory(format!("{source}: out of memory reading the input after {} MB", bytes.len() >> 20))
             })?;
             let start = bytes.len();
             let spare = bytes.capacity() - start;

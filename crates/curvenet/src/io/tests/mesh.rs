@@ -95,3 +95,64 @@ fn non_finite_values_are_never_written() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// GLB (glTF 2.0 §4.4): the header, 4-byte aligned JSON and BIN chunks, one accessor per
+/// attribute with the vertex count, positions with their bounds, indices of every face; a
+/// vertex on a sharp edge repeated per sector; reading a GLB is a usage error.
+#[test]
+fn glb_has_the_layout_of_the_standard() {
+    let dir = std::env::temp_dir().join(format!("curvenet-glb-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let m = tetra();
+    let p = dir.join("t.glb");
+    write_mesh(&p, m.as_data()).unwrap();
+    let b = std::fs::read(&p).unwrap();
+    let u32_at = |i: usize| u32::from_le_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]]) as usize;
+    assert_eq!(&b[0..4], b"glTF");
+    assert_eq!(u32_at(4), 2);
+    assert_eq!(u32_at(8), b.len());
+    let json_len = u32_at(12);
+    assert_eq!(&b[16..20], b"JSON");
+    assert_eq!(json_len % 4, 0);
+    let doc: serde_json::Value = serde_json::from_slice(&b[20..20 + json_len]).unwrap();
+    let bin = 20 + json_len;
+    assert_eq!(&b[bin + 4..bin + 8], b"BIN\0");
+    assert_eq!(u32_at(bin), b.len() - bin - 8);
+    assert_eq!(doc["buffers"][0]["byteLength"].as_u64().unwrap() as usize, u32_at(bin));
+    let prim = &doc["meshes"][0]["primitives"][0];
+    let acc = |name: &str| &doc["accessors"][prim["attributes"][name].as_u64().unwrap() as usize];
+    // The tetrahedron's every edge is sharp: each vertex has one normal per face around it.
+    let n = acc("POSITION")["count"].as_u64().unwrap();
+    assert_eq!(n, 12);
+    for name in ["NORMAL", "_MEAN_CURVATURE", "_CURVE"] {
+        assert_eq!(acc(name)["count"].as_u64().unwrap(), n, "{name}");
+    }
+    assert_eq!(acc("POSITION")["max"], serde_json::json!([1.0, 1.0, 1.0 / 3.0f32]));
+    assert_eq!(acc("POSITION")["min"], serde_json::json!([0.0, 0.0, 0.0]));
+    let indices = &doc["accessors"][prim["indices"].as_u64().unwrap() as usize];
+    assert_eq!(indices["count"].as_u64().unwrap(), 12);
+    for v in doc["bufferViews"].as_array().unwrap() {
+        assert_eq!(v["byteOffset"].as_u64().unwrap() % 4, 0);
+    }
+    let e = read_mesh(&p).unwrap_err();
+    assert_eq!(e.exit_code(), 2, "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The PLY's vertex properties share one type (libigl's reader refuses a file where they do
+/// not, then crashes).
+#[test]
+fn ply_vertex_properties_share_one_type() {
+    let dir = std::env::temp_dir().join(format!("curvenet-plytype-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("t.ply");
+    write_mesh(&p, tetra().as_data()).unwrap();
+    let b = std::fs::read(&p).unwrap();
+    let end = b.windows(10).position(|w| w == b"end_header").unwrap();
+    let header = std::str::from_utf8(&b[..end]).unwrap();
+    let vertex = header.split("element face").next().unwrap();
+    let types: std::collections::BTreeSet<&str> =
+        vertex.lines().filter_map(|l| l.strip_prefix("property ")).filter_map(|l| l.split(' ').next()).collect();
+    assert_eq!(types.into_iter().collect::<Vec<_>>(), ["double"], "{header}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
