@@ -8,6 +8,7 @@ macro_rules! out {
     }};
 }
 
+mod batch;
 mod bench;
 mod demo;
 mod eval;
@@ -34,6 +35,13 @@ use std::process::ExitCode;
 #[cfg(feature = "mimalloc")]
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
+const BATCH_HELP: &str = "\
+Each input's mesh is DIR/STEM.FORMAT (a stem met twice gets -2, -3, …), written atomically.
+DIR/report.jsonl gets one JSON line per input as it ends: input, output, status (ok or error),
+error_kind, error and exit_code of a failure, warnings, seconds, and the --stats figures (stats).
+Exit 0 when every network succeeded, 1 when any failed (listed at the end).
+Example: curvenet batch captures/ \"more/*.net\" --out meshes --jobs 2 --fast";
 
 const AFTER_HELP: &str = "\
 Exit codes: 0 success, 1 bad input (malformed file, invalid network, non-manifold curves, I/O),
@@ -66,6 +74,10 @@ enum Command {
     /// Surface a curve network: read IN, write the mesh to OUT.
     #[command(after_help = AFTER_HELP)]
     Surface(surface::SurfaceArgs),
+    /// Surface many networks: files, folders and patterns, several at a time, with a JSON-lines
+    /// report; one failure never stops the batch.
+    #[command(after_help = BATCH_HELP)]
+    Batch(batch::BatchArgs),
     /// Write a bundled analytic network (sphere, torus, cylinder, …) to a file.
     #[command(
         after_help = "Use --list to see the names. The format follows the extension of -o: .json, .obj or .net."
@@ -122,6 +134,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Surface(a) => surface::run(&a),
+        Command::Batch(a) => batch::run(&a),
         Command::Example(a) => example::run(&a),
         Command::Demo(a) => demo::run(&a),
         Command::Normals(a) => normals::run(&a),

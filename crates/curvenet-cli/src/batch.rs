@@ -1,0 +1,307 @@
+//! `curvenet batch`: surface many networks in one process, several at a time, one failure
+//! never stopping the others; a JSON-lines report, a progress bar on a terminal, `--resume`.
+//!
+//! Each job surfaces one network on a rayon pool of its own (cores / jobs threads: the
+//! factorisation's parallelism, sized so that the jobs together fill the cores), with a memory
+//! budget of its share of the memory available. The report (`DIR/report.jsonl`) gets a line as
+//! each network ends, so an interrupted batch leaves a report `--resume` can continue from.
+
+use crate::options::{options, SolveArgs};
+use clap::Args;
+use curvenet::Error;
+use serde_json::{json, Value};
+use std::collections::{HashMap, HashSet};
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use std::time::Instant;
+
+/// Network extensions a folder is searched for.
+const NETWORK_EXTENSIONS: [&str; 3] = ["json", "obj", "net"];
+
+#[derive(Args)]
+pub struct BatchArgs {
+    /// Input networks: files, folders (their .json, .obj and .net files, not recursing) and
+    /// glob patterns, quoted so the shell leaves them ("captures/*.json", "data/**/*.net").
+    #[arg(required = true, value_name = "INPUTS")]
+    inputs: Vec<String>,
+    /// Folder of the meshes (one per input, named after it) and of report.jsonl; created if
+    /// missing.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Networks surfaced at once [default: the number of cores]; each gets cores / jobs
+    /// threads and its share of the memory.
+    #[arg(short, long, value_name = "N")]
+    jobs: Option<usize>,
+    /// Format of the meshes.
+    #[arg(long, default_value = "ply", value_parser = ["ply", "obj", "off", "glb"])]
+    format: String,
+    /// Skip the inputs that DIR/report.jsonl lists as ok and whose mesh is there.
+    #[arg(long)]
+    resume: bool,
+    #[command(flatten)]
+    solve: SolveArgs,
+    /// Print nothing but the summary and errors.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+/// One network of the batch.
+struct Job {
+    input: PathBuf,
+    output: PathBuf,
+}
+
+pub fn run(a: &BatchArgs) -> Result<(), Error> {
+    let start = Instant::now();
+    if a.jobs == Some(0) || a.jobs.is_some_and(|j| j > 1024) {
+        return Err(Error::usage("`jobs` must be between 1 and 1024"));
+    }
+    let base = options(&a.solve)?;
+    let inputs = expand(&a.inputs)?;
+    if inputs.is_empty() {
+        return Err(Error::usage("no network found in the inputs (files, folders of .json/.obj/.net, patterns)"));
+    }
+    std::fs::create_dir_all(&a.out).map_err(|e| Error::io(&a.out, e))?;
+    let report_path = a.out.join("report.jsonl");
+    let jobs = name_outputs(&inputs, &a.out, &a.format);
+    // Lines kept from an earlier run (--resume): ok, mesh present, input still asked for.
+    let mut kept: Vec<String> = Vec::new();
+    let mut done: HashSet<PathBuf> = HashSet::new();
+    if a.resume {
+        if let Ok(text) = std::fs::read_to_string(&report_path) {
+            let wanted: HashMap<&Path, &Path> = jobs.iter().map(|j| (j.input.as_path(), j.output.as_path())).collect();
+            for line in text.lines() {
+                let Ok(v) = serde_json::from_str::<Value>(line) else { continue };
+                let (Some(input), Some(output)) = (v["input"].as_str(), v["output"].as_str()) else { continue };
+                let input = PathBuf::from(input);
+                if v["status"] == "ok"
+                    && wanted.get(input.as_path()) == Some(&Path::new(output))
+                    && Path::new(output).is_file()
+                    && done.insert(input)
+                {
+                    kept.push(line.to_string());
+                }
+            }
+        }
+    }
+    let todo: Vec<&Job> = jobs.iter().filter(|j| !done.contains(&j.input)).collect();
+    let mut report = std::fs::File::create(&report_path).map_err(|e| Error::io(&report_path, e))?;
+    for line in &kept {
+        writeln!(report, "{line}").map_err(|e| Error::io(&report_path, e))?;
+    }
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let workers = a.jobs.unwrap_or(cores).clamp(1, todo.len().max(1));
+    let threads = (cores / workers).max(1);
+    let mut base = base;
+    if base.mesh.max_memory.is_none() {
+        base.mesh.max_memory = curvenet::solve::memory::available_memory(None).map(|m| m / workers as f64);
+    }
+    let progress = Progress::new(todo.len(), kept.len(), a.quiet);
+    let next = AtomicUsize::new(0);
+    let shared = Mutex::new((report, Vec::<(String, String)>::new()));
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+                loop {
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(job) = todo.get(k) else { break };
+                    let line = match &pool {
+                        Ok(pool) => pool.install(|| surface_one(job, &base)),
+                        Err(e) => failure(job, &Error::internal(format!("no thread pool: {e}")), 0.0),
+                    };
+                    let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
+                    let (report, failed) = &mut *guard;
+                    let _ = writeln!(report, "{line}").and_then(|_| report.flush());
+                    if line["status"] != "ok" {
+                        failed
+                            .push((job.input.display().to_string(), line["error"].as_str().unwrap_or("").to_string()));
+                    }
+                    progress.finished(job, &line);
+                }
+            });
+        }
+    });
+    progress.clear();
+    let (_, failed) = shared.into_inner().unwrap_or_else(|e| e.into_inner());
+    let total = jobs.len();
+    eprintln!(
+        "{total} networks: {} ok{}, {} failed, in {:.1} s ({} jobs × {threads} thread{}); report: {}",
+        total - failed.len(),
+        if kept.is_empty() { String::new() } else { format!(" ({} from the earlier run)", kept.len()) },
+        failed.len(),
+        start.elapsed().as_secs_f64(),
+        workers,
+        if threads == 1 { "" } else { "s" },
+        report_path.display()
+    );
+    if failed.is_empty() {
+        return Ok(());
+    }
+    for (input, error) in &failed {
+        eprintln!("  failed: {input}: {error}");
+    }
+    Err(Error::input(format!("{} of {total} networks failed (see {})", failed.len(), report_path.display())))
+}
+
+/// Reads, surfaces and writes one network: its report line.
+fn surface_one(job: &Job, base: &curvenet::Options) -> Value {
+    let clock = Instant::now();
+    let run = || -> Result<Value, Error> {
+        let network = curvenet::io::read_network(&job.input)?;
+        let mut opts = base.clone();
+        if opts.method == curvenet::Method::Cauchy {
+            opts.cauchy.attributes =
+                curvenet::methods::andrews2011::NetworkAttributes::read(&job.input)?.map(std::sync::Arc::new);
+        }
+        let surface = curvenet::surface(&network, &opts)?;
+        curvenet::io::write_mesh(&job.output, surface.mesh_data())?;
+        let warnings: Vec<String> = surface.warnings.iter().map(|w| w.to_string()).collect();
+        Ok(json!({
+            "input": job.input.display().to_string(),
+            "output": job.output.display().to_string(),
+            "status": "ok",
+            "warnings": warnings,
+            "seconds": clock.elapsed().as_secs_f64(),
+            "stats": serde_json::to_value(&surface.stats).unwrap_or(Value::Null),
+        }))
+    };
+    // A bug (a panic) in one network is that network's error, not the batch's end.
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(run)) {
+        Ok(Ok(line)) => line,
+        Ok(Err(e)) => failure(job, &e, clock.elapsed().as_secs_f64()),
+        Err(_) => failure(job, &Error::internal("the run panicked (a bug: please report it with the input)"), 0.0),
+    }
+}
+
+fn failure(job: &Job, e: &Error, seconds: f64) -> Value {
+    json!({
+        "input": job.input.display().to_string(),
+        "output": Value::Null,
+        "status": "error",
+        "error_kind": e.kind(),
+        "error": e.to_string(),
+        "exit_code": e.exit_code(),
+        "warnings": [],
+        "seconds": seconds,
+    })
+}
+
+/// The input files: each argument a file, a folder (its network files, sorted) or a glob
+/// pattern; a path that is none of these is kept, to be reported as missing. Duplicates (the
+/// same file twice) once. A folder without networks, or a pattern matching no file, is a usage
+/// error (a typo, not an empty batch).
+fn expand(args: &[String]) -> Result<Vec<PathBuf>, Error> {
+    let mut out: Vec<PathBuf> = Vec::new();
+    let is_network = |p: &Path| {
+        p.is_file()
+            && p.extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| NETWORK_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
+    };
+    for arg in args {
+        let path = Path::new(arg);
+        if path.is_dir() {
+            let mut files: Vec<PathBuf> = std::fs::read_dir(path)
+                .map_err(|e| Error::io(path, e))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| is_network(p))
+                .collect();
+            if files.is_empty() {
+                return Err(Error::usage(format!("{arg}: the folder holds no .json, .obj or .net file")));
+            }
+            files.sort();
+            out.extend(files);
+        } else if path.exists() || !arg.contains(['*', '?', '[']) {
+            out.push(path.to_path_buf());
+        } else {
+            let paths = glob::glob(arg).map_err(|e| Error::usage(format!("pattern {arg:?}: {e}")))?;
+            let mut files: Vec<PathBuf> = paths.filter_map(|p| p.ok()).filter(|p| p.is_file()).collect();
+            if files.is_empty() {
+                return Err(Error::usage(format!("{arg}: the pattern matches no file")));
+            }
+            files.sort();
+            out.extend(files);
+        }
+    }
+    let mut seen = HashSet::new();
+    out.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
+    Ok(out)
+}
+
+/// `DIR/STEM.FORMAT` per input; a stem met again gets `-2`, `-3`, … (in input order).
+fn name_outputs(inputs: &[PathBuf], dir: &Path, format: &str) -> Vec<Job> {
+    let mut used: HashSet<String> = HashSet::new();
+    inputs
+        .iter()
+        .map(|input| {
+            let stem = input.file_stem().map_or("network".into(), |s| s.to_string_lossy().into_owned());
+            let mut name = stem.clone();
+            let mut k = 1;
+            while !used.insert(name.clone()) {
+                k += 1;
+                name = format!("{stem}-{k}");
+            }
+            Job { input: input.clone(), output: dir.join(format!("{name}.{format}")) }
+        })
+        .collect()
+}
+
+/// A progress bar with counts and ETA on a terminal; one line per network otherwise.
+struct Progress {
+    bar: Option<indicatif::ProgressBar>,
+    total: usize,
+    count: AtomicUsize,
+    quiet: bool,
+}
+
+impl Progress {
+    fn new(todo: usize, kept: usize, quiet: bool) -> Self {
+        let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
+            let bar = indicatif::ProgressBar::new(todo as u64);
+            if let Ok(style) =
+                indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} networks, {elapsed} (ETA {eta}) {msg}")
+            {
+                bar.set_style(style);
+            }
+            bar
+        });
+        if kept > 0 && !quiet {
+            eprintln!("resuming: {kept} networks done in an earlier run, {todo} to go");
+        }
+        Progress { bar, total: todo, count: AtomicUsize::new(0), quiet }
+    }
+
+    fn finished(&self, job: &Job, line: &Value) {
+        let k = self.count.fetch_add(1, Ordering::Relaxed) + 1;
+        let ok = line["status"] == "ok";
+        let what = if ok {
+            format!(
+                "ok     {} → {} ({:.2} s)",
+                job.input.display(),
+                job.output.display(),
+                line["seconds"].as_f64().unwrap_or(0.0)
+            )
+        } else {
+            format!("error  {}: {}", job.input.display(), line["error"].as_str().unwrap_or(""))
+        };
+        match &self.bar {
+            Some(bar) => {
+                if !ok {
+                    bar.println(what);
+                }
+                bar.inc(1);
+            }
+            None if !self.quiet => eprintln!("[{k}/{}] {what}", self.total),
+            None => {}
+        }
+    }
+
+    fn clear(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}
