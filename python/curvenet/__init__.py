@@ -56,6 +56,7 @@ __all__ = [
     "read_mesh",
     "read_network",
     "surface",
+    "surface_files",
 ]
 
 #: The surfacing options, from the library's table: ``{name: (value_name, choices, help,
@@ -136,6 +137,101 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     """
     given = dict(method=method, spacing=spacing, vertices=vertices, soft=soft, iterations=iterations, **options)
     return _result(_curvenet._surface(network, _options(preset, given)))
+
+
+_NETWORK_EXTENSIONS = (".json", ".obj", ".net")
+
+
+def _expand_inputs(inputs):
+    """Files, folders (their .json/.obj/.net files, sorted) and glob patterns: the files, each
+    once. A folder without networks or a pattern matching nothing raises ``ValueError``."""
+    import glob as _glob
+    import os as _os
+
+    if isinstance(inputs, (str, _os.PathLike)):
+        inputs = [inputs]
+    out, seen = [], set()
+    for item in inputs:
+        item = _os.fspath(item)
+        if _os.path.isdir(item):
+            found = sorted(_os.path.join(item, f) for f in _os.listdir(item)
+                           if f.lower().endswith(_NETWORK_EXTENSIONS) and _os.path.isfile(_os.path.join(item, f)))
+            if not found:
+                raise ValueError(f"{item}: the folder holds no .json, .obj or .net file")
+        elif _os.path.exists(item) or not any(c in item for c in "*?["):
+            found = [item]
+        else:
+            found = sorted(p for p in _glob.glob(item, recursive=True) if _os.path.isfile(p))
+            if not found:
+                raise ValueError(f"{item}: the pattern matches no file")
+        for f in found:
+            key = _os.path.realpath(f)
+            if key not in seen:
+                seen.add(key)
+                out.append(f)
+    return out
+
+
+def _surface_file(job):
+    """One network file to one mesh file (runs in a worker process): the report dict."""
+    input_, output, preset, named = job
+    return _json.loads(_curvenet._surface_file(input_, output, preset, named))
+
+
+def _init_worker(threads):
+    import os as _os
+
+    # Before the first solve builds the worker's thread pool.
+    _os.environ["RAYON_NUM_THREADS"] = str(threads)
+
+
+def surface_files(inputs, out_dir, *, client=None, jobs=None, format="ply", preset="default", **options):
+    """Surfaces many network files: ``inputs`` (a path, or a list of files, folders and glob
+    patterns) into ``out_dir/STEM.FORMAT``; returns a list of dicts, one per input in input
+    order, with the fields of a ``curvenet batch`` report line: ``input``, ``output``,
+    ``status`` (``"ok"``/``"error"``), ``error_kind``, ``error`` and ``exit_code`` of a failure,
+    ``warnings``, ``seconds``, ``stats``. A bad network never stops the others.
+
+    Without ``client`` the files are surfaced by ``jobs`` local processes (default: the number
+    of cores; each with cores / jobs solver threads). With a ``dask.distributed.Client`` they
+    are mapped over the cluster's workers (every worker needs curvenet installed, and
+    ``out_dir`` must be a folder every worker can write: a shared file system). The options are
+    those of :func:`surface` and are checked here, before any work (``UsageError``).
+    """
+    import os as _os
+
+    if format not in ("ply", "obj", "off", "glb"):
+        raise ValueError(f"format {format!r} is not ply, obj, off or glb")
+    _options(preset, options)  # raises on a bad option before any work
+    named = [(k, _text(k, v)) for k, v in options.items() if v is not None]
+    files = _expand_inputs(inputs)
+    out_dir = _os.fspath(out_dir)
+    _os.makedirs(out_dir, exist_ok=True)
+    used, work = set(), []
+    for f in files:
+        stem = _os.path.splitext(_os.path.basename(f))[0] or "network"
+        name, k = stem, 1
+        while name in used:
+            k += 1
+            name = f"{stem}-{k}"
+        used.add(name)
+        work.append((f, _os.path.join(out_dir, f"{name}.{format}"), preset, named))
+    if not work:
+        return []
+    if client is not None:
+        futures = client.map(_surface_file, work, pure=False)
+        return client.gather(futures)
+    import concurrent.futures as _cf
+    import multiprocessing as _mp
+
+    cores = _os.cpu_count() or 1
+    jobs = max(1, min(int(jobs or cores), len(work)))
+    if jobs == 1:
+        return [_surface_file(w) for w in work]
+    ctx = _mp.get_context("spawn")  # no fork of a process that holds solver threads
+    with _cf.ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_init_worker,
+                                 initargs=(max(1, cores // jobs),)) as pool:
+        return list(pool.map(_surface_file, work))
 
 
 def infer_normals(network, *, all=False, snap=None):

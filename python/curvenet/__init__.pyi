@@ -1,5 +1,6 @@
 """Type stubs of curvenet (NumPy arrays: shapes in the docstrings)."""
 
+import os
 from typing import Any, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -88,6 +89,19 @@ def surface(
     ghost_updates: Optional[int] = None,
 ) -> Tuple[FloatArray, IntArray, dict[str, Any]]:
     """``(V (n,3) float64, F (m,3) int64, info)``."""
+
+def surface_files(
+    inputs: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.PathLike[str]"]]],
+    out_dir: Union[str, "os.PathLike[str]"],
+    *,
+    client: Any = None,
+    jobs: Optional[int] = None,
+    format: Literal["ply", "obj", "off", "glb"] = "ply",
+    preset: Preset = "default",
+    **options: Any,
+) -> list[dict[str, Any]]:
+    """One report dict per input (the fields of a ``curvenet batch`` report line); options as
+    :func:`surface`; ``client``: a ``dask.distributed.Client`` to map the files over."""
 
 class Surfacer:
     def __init__(

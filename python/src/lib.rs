@@ -290,6 +290,27 @@ fn _options(preset: &str, given: Vec<(String, String)>) -> PyResult<PyOptions> {
     Ok(PyOptions { inner: Options::from_named(preset, &given).map_err(err)? })
 }
 
+/// Surfaces the network file `input` into the mesh file `output` with the options `(preset,
+/// [(name, value)])` (plain data, so that it travels to another process or a Dask worker):
+/// the report as JSON text (`curvenet batch`'s report line). Never raises for the file's
+/// faults: they are the report's. The GIL is released during the run.
+#[pyfunction]
+fn _surface_file(
+    py: Python<'_>,
+    input: &str,
+    output: &str,
+    preset: &str,
+    given: Vec<(String, String)>,
+) -> PyResult<String> {
+    let preset = Preset::from_name(preset).map_err(err)?;
+    let named: Vec<(&str, &str)> = given.iter().map(|(n, v)| (n.as_str(), v.as_str())).collect();
+    let options = Options::from_named(preset, &named).map_err(err)?;
+    let report = py.detach(|| {
+        curvenet::pipeline::files::surface_file(std::path::Path::new(input), std::path::Path::new(output), &options)
+    });
+    serde_json::to_string(&report).map_err(|e| usage(e.to_string()))
+}
+
 /// The option table: `(name, value_name, choices, help, default)` per option.
 #[pyfunction]
 fn _option_specs() -> Vec<(&'static str, &'static str, Vec<&'static str>, &'static str, String)> {
@@ -541,6 +562,7 @@ fn _curvenet(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("NumericalError", m.py().get_type::<NumericalError>())?;
     m.add("UsageError", m.py().get_type::<UsageError>())?;
     m.add_function(wrap_pyfunction!(_surface, m)?)?;
+    m.add_function(wrap_pyfunction!(_surface_file, m)?)?;
     m.add_function(wrap_pyfunction!(_infer_normals, m)?)?;
     m.add_function(wrap_pyfunction!(_harmonic, m)?)?;
     m.add_function(wrap_pyfunction!(_eval, m)?)?;

@@ -387,3 +387,53 @@ def test_outputs_open_in_other_tools(tmp_path):
     assert np.abs(np.linalg.norm(glb.vertices, axis=1) - 1).max() < 2e-3
     H = np.asarray(glb.vertex_attributes["_MEAN_CURVATURE"]).ravel()
     assert len(H) == len(glb.vertices) and abs(np.median(H) - 1) < 0.02
+
+
+def _batch_folder(tmp_path):
+    """Three good networks (JSON and .net) and two malformed ones."""
+    folder = tmp_path / "in"
+    folder.mkdir()
+    for name, file in [("sphere", "a.json"), ("torus", "b.net"), ("cylinder", "c.json")]:
+        subprocess.run([str(CLI), "example", name, "-o", str(folder / file)], check=True, capture_output=True)
+    (folder / "d.json").write_text('{"curves": [')
+    (folder / "e.net").write_text("3\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n1\n1\n0 1 7 0\n")
+    return folder
+
+
+def _check_reports(reports, folder):
+    assert [Path(r["input"]).name for r in reports] == ["a.json", "b.net", "c.json", "d.json", "e.net"]
+    for r in reports[:3]:
+        assert r["status"] == "ok", r
+        V, F = curvenet.read_mesh(r["output"])
+        assert len(F) == r["stats"]["faces"] > 1000
+    for r in reports[3:]:
+        assert r["status"] == "error" and r["error_kind"] in ("parse", "input") and r["exit_code"] == 1, r
+        assert r["input"] in r["error"] and r.get("output") is None
+
+
+def test_surface_files_local_processes(tmp_path):
+    folder = _batch_folder(tmp_path)
+    reports = curvenet.surface_files(folder, tmp_path / "out", jobs=2, preset="fast", vertices=3000)
+    _check_reports(reports, folder)
+    # The same as the command line's batch report.
+    subprocess.run([str(CLI), "batch", str(folder), "--out", str(tmp_path / "cli"), "--fast", "--vertices", "3000",
+                    "-q", "--jobs", "1"], capture_output=True)
+    import json
+    cli_lines = [json.loads(l) for l in (tmp_path / "cli" / "report.jsonl").read_text().splitlines()]
+    assert {l["input"] for l in cli_lines} == {r["input"] for r in reports}
+    assert all(set(l) == set(r) for l, r in zip(sorted(cli_lines, key=lambda l: l["input"]), reports))
+    with pytest.raises(curvenet.UsageError):
+        curvenet.surface_files(folder, tmp_path / "x", vertices=-5)
+    with pytest.raises(ValueError, match="matches no file"):
+        curvenet.surface_files(str(tmp_path / "nothing" / "*.json"), tmp_path / "x")
+
+
+def test_surface_files_on_a_dask_cluster(tmp_path):
+    distributed = pytest.importorskip("dask.distributed")
+    folder = _batch_folder(tmp_path)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        reports = curvenet.surface_files(folder, tmp_path / "out", client=client, preset="fast", vertices=3000)
+        workers = client.run(lambda: 1)
+    assert len(workers) == 2
+    _check_reports(reports, folder)

@@ -8,8 +8,9 @@
 
 use crate::options::{options, SolveArgs};
 use clap::Args;
+use curvenet::pipeline::files::{surface_file, FileReport};
 use curvenet::Error;
-use serde_json::{json, Value};
+use serde_json::Value;
 use std::collections::{HashMap, HashSet};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -108,10 +109,13 @@ pub fn run(a: &BatchArgs) -> Result<(), Error> {
                 loop {
                     let k = next.fetch_add(1, Ordering::Relaxed);
                     let Some(job) = todo.get(k) else { break };
-                    let line = match &pool {
-                        Ok(pool) => pool.install(|| surface_one(job, &base)),
-                        Err(e) => failure(job, &Error::internal(format!("no thread pool: {e}")), 0.0),
+                    let report = match &pool {
+                        Ok(pool) => pool.install(|| surface_file(&job.input, &job.output, &base)),
+                        Err(e) => {
+                            FileReport::failure(&job.input, &Error::internal(format!("no thread pool: {e}")), 0.0)
+                        }
                     };
+                    let line = serde_json::to_value(&report).unwrap_or(Value::Null);
                     let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
                     let (report, failed) = &mut *guard;
                     let _ = writeln!(report, "{line}").and_then(|_| report.flush());
@@ -144,49 +148,6 @@ pub fn run(a: &BatchArgs) -> Result<(), Error> {
         eprintln!("  failed: {input}: {error}");
     }
     Err(Error::input(format!("{} of {total} networks failed (see {})", failed.len(), report_path.display())))
-}
-
-/// Reads, surfaces and writes one network: its report line.
-fn surface_one(job: &Job, base: &curvenet::Options) -> Value {
-    let clock = Instant::now();
-    let run = || -> Result<Value, Error> {
-        let network = curvenet::io::read_network(&job.input)?;
-        let mut opts = base.clone();
-        if opts.method == curvenet::Method::Cauchy {
-            opts.cauchy.attributes =
-                curvenet::methods::andrews2011::NetworkAttributes::read(&job.input)?.map(std::sync::Arc::new);
-        }
-        let surface = curvenet::surface(&network, &opts)?;
-        curvenet::io::write_mesh(&job.output, surface.mesh_data())?;
-        let warnings: Vec<String> = surface.warnings.iter().map(|w| w.to_string()).collect();
-        Ok(json!({
-            "input": job.input.display().to_string(),
-            "output": job.output.display().to_string(),
-            "status": "ok",
-            "warnings": warnings,
-            "seconds": clock.elapsed().as_secs_f64(),
-            "stats": serde_json::to_value(&surface.stats).unwrap_or(Value::Null),
-        }))
-    };
-    // A bug (a panic) in one network is that network's error, not the batch's end.
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(run)) {
-        Ok(Ok(line)) => line,
-        Ok(Err(e)) => failure(job, &e, clock.elapsed().as_secs_f64()),
-        Err(_) => failure(job, &Error::internal("the run panicked (a bug: please report it with the input)"), 0.0),
-    }
-}
-
-fn failure(job: &Job, e: &Error, seconds: f64) -> Value {
-    json!({
-        "input": job.input.display().to_string(),
-        "output": Value::Null,
-        "status": "error",
-        "error_kind": e.kind(),
-        "error": e.to_string(),
-        "exit_code": e.exit_code(),
-        "warnings": [],
-        "seconds": seconds,
-    })
 }
 
 /// The input files: each argument a file, a folder (its network files, sorted) or a glob

@@ -13,6 +13,7 @@
 //! factorisations for re-solves with new curve normals or positions.
 
 pub mod budget;
+pub mod files;
 pub mod infer;
 pub mod options;
 pub mod prepare;

@@ -1,0 +1,98 @@
+//! One network file to one mesh file, with a report of the run instead of an early return:
+//! the unit of `curvenet batch` and of Python's `curvenet.surface_files` (local processes or a
+//! Dask cluster), so that both report the same fields.
+
+use super::{surface, Options, Stats};
+use crate::error::Error;
+use serde::Serialize;
+use std::path::Path;
+use std::time::Instant;
+
+/// What became of one network file: a line of `curvenet batch`'s `report.jsonl`.
+#[derive(Clone, Debug, Serialize)]
+pub struct FileReport {
+    /// The network file, as given.
+    pub input: String,
+    /// The mesh written (`None` when the run failed: nothing was written).
+    pub output: Option<String>,
+    /// `"ok"` or `"error"`.
+    pub status: &'static str,
+    /// The error's kind ([`Error::kind`]: `parse`, `input`, `topology`, `io`, `numerical`,
+    /// `memory`, …), on failure.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error_kind: Option<&'static str>,
+    /// The error's message, on failure.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+    /// The exit code `curvenet surface` would give ([`Error::exit_code`]), on failure.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exit_code: Option<i32>,
+    /// What the run repaired, assumed or left out.
+    pub warnings: Vec<String>,
+    /// Wall time of the run (read, surface, write), seconds.
+    pub seconds: f64,
+    /// The run's statistics (as `--stats` writes them), on success.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stats: Option<Stats>,
+}
+
+impl FileReport {
+    /// The run succeeded.
+    pub fn is_ok(&self) -> bool {
+        self.status == "ok"
+    }
+
+    /// A failed run's report.
+    pub fn failure(input: &Path, e: &Error, seconds: f64) -> Self {
+        FileReport {
+            input: input.display().to_string(),
+            output: None,
+            status: "error",
+            error_kind: Some(e.kind()),
+            error: Some(e.to_string()),
+            exit_code: Some(e.exit_code()),
+            warnings: Vec::new(),
+            seconds,
+            stats: None,
+        }
+    }
+}
+
+/// Reads the network `input`, surfaces it with `options` (a JSON network keeps its `cauchy`
+/// attributes for that method, as `curvenet surface` reads them) and writes the mesh to
+/// `output` (atomically; the format from its extension). Never fails: an error — a panic too,
+/// reported as an internal error — is the report's.
+pub fn surface_file(input: &Path, output: &Path, options: &Options) -> FileReport {
+    let clock = Instant::now();
+    let run = || -> Result<FileReport, Error> {
+        crate::io::check_mesh_path(output)?;
+        let network = crate::io::read_network(input)?;
+        let mut opts = options.clone();
+        if opts.method == crate::Method::Cauchy && opts.cauchy.attributes.is_none() {
+            opts.cauchy.attributes =
+                crate::methods::andrews2011::NetworkAttributes::read(input)?.map(std::sync::Arc::new);
+        }
+        let s = surface(&network, &opts)?;
+        crate::io::write_mesh(output, s.mesh_data())?;
+        Ok(FileReport {
+            input: input.display().to_string(),
+            output: Some(output.display().to_string()),
+            status: "ok",
+            error_kind: None,
+            error: None,
+            exit_code: None,
+            warnings: s.warnings.iter().map(|w| w.to_string()).collect(),
+            seconds: clock.elapsed().as_secs_f64(),
+            stats: Some(s.stats),
+        })
+    };
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(run)) {
+        Ok(Ok(report)) => report,
+        Ok(Err(e)) => FileReport::failure(input, &e, clock.elapsed().as_secs_f64()),
+        Err(_) => FileReport::failure(
+            input,
+            &Error::internal("the run panicked (a bug: please report it with the input)"),
+            clock.elapsed().as_secs_f64(),
+        ),
+    }
+}
