@@ -8,32 +8,52 @@ const $ = (id) => document.getElementById(id);
 const enc = new TextEncoder();
 const dec = new TextDecoder();
 
-// ---- The WebAssembly module (plain C ABI: see viewer/wasm/src/lib.rs) ----
-let wasm = null;
+// ---- The library, in Web Workers (worker.js) ----
+// Two workers: `util` for the quick calls (examples, curve lists, turned normals) and `solver`
+// for surfaces and exports. A newer solve while one runs ends the old one: the solver worker
+// is terminated and a new one started (the module stays compiled), so the page never waits
+// for an answer nobody wants.
+let wasmModule = null;
+class Worker1 {
+  constructor() { this.next = 1; this.pending = new Map(); this.start(); }
+  start() {
+    this.worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+    this.worker.onmessage = (e) => {
+      const { id, ok, result, error, curve } = e.data;
+      const p = this.pending.get(id);
+      if (!p) return;
+      this.pending.delete(id);
+      if (ok) p.resolve(result);
+      else { const err = new Error(error); err.curve = curve; p.reject(err); }
+    };
+    this.ready = this.post('init', [], { module: wasmModule });
+  }
+  post(op, args, extra = {}) {
+    const id = this.next++;
+    return new Promise((resolve, reject) => {
+      this.pending.set(id, { resolve, reject });
+      this.worker.postMessage({ id, op, args, ...extra });
+    });
+  }
+  async call(op, ...args) { await this.ready; return this.post(op, args); }
+  /** Ends what runs (its callers get a `cancelled` error) and starts afresh. */
+  restart() {
+    this.worker.terminate();
+    for (const p of this.pending.values()) { const e = new Error('cancelled'); e.cancelled = true; p.reject(e); }
+    this.pending.clear();
+    this.start();
+  }
+}
+let util = null, solver = null;
 async function loadWasm() {
-  const bytes = await (await fetch('pkg/curvenet.wasm')).arrayBuffer();
-  const { instance } = await WebAssembly.instantiate(bytes, {});
-  wasm = instance.exports;
-}
-function withText(s, f) {
-  const b = enc.encode(s);
-  const p = wasm.cn_alloc(b.length);
-  new Uint8Array(wasm.memory.buffer, p, b.length).set(b);
-  try { return f(p, b.length); } finally { wasm.cn_free(p, b.length); }
-}
-const text = () => dec.decode(new Uint8Array(wasm.memory.buffer, wasm.cn_text_ptr(), wasm.cn_text_len()).slice());
-function buffer(kind, Type) {
-  const n = wasm.cn_buffer_len(kind);
-  return new Type(wasm.memory.buffer, wasm.cn_buffer_ptr(kind), n).slice();
-}
-/** Runs a library call; a trap (a bug, not bad input) reloads the module and reports it. */
-async function call(f) {
-  try { return f(); } catch (e) { await loadWasm(); throw new Error(`internal error: ${e.message}`); }
+  wasmModule = await WebAssembly.compile(await (await fetch('pkg/curvenet.wasm')).arrayBuffer());
+  util = new Worker1();
+  solver = new Worker1();
 }
 const FORMATS = { json: 0, obj: 1, net: 2 };
 
 // ---- State ----
-const state = { name: 'sphere', format: 0, base: '', result: null, fitted: false };
+const state = { name: 'sphere', format: 0, base: '', result: null, fitted: false, curves: null, errorCurve: -1 };
 
 // ---- three.js ----
 const view = $('view');
@@ -95,6 +115,10 @@ const mesh = new THREE.Mesh(new THREE.BufferGeometry(), material);
 scene.add(mesh);
 const curveLines = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x1a1a1a }));
 scene.add(curveLines);
+const selectedLine = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0xff8c00, depthTest: false }));
+const errorLine = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0xe00000, depthTest: false }));
+selectedLine.renderOrder = errorLine.renderOrder = 1;
+scene.add(selectedLine, errorLine);
 
 function resize() {
   const w = view.clientWidth, h = view.clientHeight;
@@ -137,6 +161,61 @@ function updateColoring() {
   draw();
 }
 
+/** The network's curves as line segments; `segCurve[k]`: the curve of segment k. */
+let segCurve = new Uint32Array(0);
+function showCurves(c) {
+  const seg = [], owner = [];
+  for (let k = 0; k + 1 < c.offsets.length; k++) {
+    for (let i = c.offsets[k]; i + 1 < c.offsets[k + 1]; i++) {
+      seg.push(c.curves[3 * i], c.curves[3 * i + 1], c.curves[3 * i + 2], c.curves[3 * i + 3], c.curves[3 * i + 4], c.curves[3 * i + 5]);
+      owner.push(k);
+    }
+  }
+  const cg = new THREE.BufferGeometry();
+  cg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(seg), 3));
+  curveLines.geometry.dispose();
+  curveLines.geometry = cg;
+  segCurve = Uint32Array.from(owner);
+  state.curves = c;
+  highlight();
+}
+
+/** Draws the selected curve (orange) and the curve an error names (red) over the others. */
+function highlight() {
+  const c = state.curves;
+  const pick = (k) => {
+    if (!c || !(k >= 0) || k + 1 >= c.offsets.length) return new Float32Array(0);
+    const seg = [];
+    for (let i = c.offsets[k]; i + 1 < c.offsets[k + 1]; i++) {
+      for (let j = 0; j < 6; j++) seg.push(c.curves[3 * i + j]);
+    }
+    return new Float32Array(seg);
+  };
+  for (const [line, k] of [[selectedLine, $('curve').value === '' ? -1 : +$('curve').value], [errorLine, state.errorCurve]]) {
+    const g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.BufferAttribute(pick(k), 3));
+    line.geometry.dispose();
+    line.geometry = g;
+  }
+  $('message').dataset.errorCurve = String(state.errorCurve);
+  draw();
+}
+
+function fit(g) {
+  g.computeBoundingSphere();
+  const s = g.boundingSphere;
+  if (!s || !(s.radius > 0)) return;
+  controls.target.copy(s.center);
+  const d = 1.1 * s.radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2));
+  const dir = new THREE.Vector3(Math.cos(0.52) * Math.cos(0.44), Math.sin(0.52) * Math.cos(0.44), Math.sin(0.44));
+  camera.position.copy(s.center).addScaledVector(dir, d);
+  camera.near = d / 100; camera.far = d * 10;
+  camera.updateProjectionMatrix();
+  controls.update();
+  raycaster.params.Line.threshold = 0.015 * s.radius;
+  state.fitted = true;
+}
+
 function show(r) {
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.BufferAttribute(r.positions, 3));
@@ -144,64 +223,53 @@ function show(r) {
   g.setIndex(new THREE.BufferAttribute(r.faces, 1));
   mesh.geometry.dispose();
   mesh.geometry = g;
-  const seg = [];
-  for (let k = 0; k + 1 < r.offsets.length; k++) {
-    for (let i = r.offsets[k]; i + 1 < r.offsets[k + 1]; i++) {
-      seg.push(r.curves[3 * i], r.curves[3 * i + 1], r.curves[3 * i + 2], r.curves[3 * i + 3], r.curves[3 * i + 4], r.curves[3 * i + 5]);
-    }
-  }
-  const cg = new THREE.BufferGeometry();
-  cg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(seg), 3));
-  curveLines.geometry.dispose();
-  curveLines.geometry = cg;
-  if (!state.fitted) {
-    g.computeBoundingSphere();
-    const s = g.boundingSphere;
-    controls.target.copy(s.center);
-    const d = 1.1 * s.radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2));
-    const dir = new THREE.Vector3(Math.cos(0.52) * Math.cos(0.44), Math.sin(0.52) * Math.cos(0.44), Math.sin(0.44));
-    camera.position.copy(s.center).addScaledVector(dir, d);
-    camera.near = d / 100; camera.far = d * 10;
-    camera.updateProjectionMatrix();
-    controls.update();
-    state.fitted = true;
-  }
+  mesh.visible = true;
+  showCurves(r);
+  if (!state.fitted) fit(g);
   updateColoring();
 }
 
 // ---- Solving ----
-function networkText() {
+async function networkText() {
   const angle = +$('angle').value;
   const curve = +$('curve').value;
   if (!angle || !(curve >= 0)) return { text: state.base, format: state.format };
-  const rc = withText(state.base, (p, n) => wasm.cn_rotate_normals(p, n, state.format, curve, angle));
-  if (rc !== 0) throw new Error(text());
-  return { text: text(), format: 0 };
+  return { text: await util.call('rotate', state.base, state.format, curve, angle), format: 0 };
 }
 
-let solving = false, again = false;
+/** Shows that a solve runs (a bar and the seconds so far), or that none does. */
+let ticker = 0;
+function solvingIndicator(on) {
+  const p = $('progress');
+  p.hidden = !on;
+  $('stats').dataset.solving = on ? '1' : '0';
+  clearInterval(ticker);
+  if (on) {
+    const t0 = performance.now();
+    $('progress-text').textContent = 'solving…';
+    ticker = setInterval(() => { $('progress-text').textContent = `solving… ${((performance.now() - t0) / 1000).toFixed(1)} s`; }, 100);
+  }
+  for (const b of document.querySelectorAll('.download-mesh')) b.disabled = on || !state.result;
+}
+
+/** Solves the current network with the current controls. A solve asked for while another runs
+ * ends that one (its worker is restarted): the newest request wins. */
+let solveCount = 0;
 async function solve() {
-  if (solving) { again = true; return; }
-  solving = true;
+  const mine = ++solveCount;
+  if ($('stats').dataset.solving === '1') solver.restart();
+  solvingIndicator(true);
   $('message').textContent = '';
   try {
     const vertices = Math.round(10 ** +$('vertices').value);
     const soft = +$('soft').value;
     const t0 = performance.now();
-    const result = await call(() => {
-      const net = networkText();
-      const rc = withText(net.text, (p, n) => wasm.cn_surface(p, n, net.format, +$('method').value, vertices, soft, +$('quality').value));
-      if (rc !== 0) throw new Error(text());
-      return {
-        positions: buffer(0, Float32Array), faces: buffer(1, Uint32Array), normals: buffer(2, Float32Array),
-        curvature: buffer(3, Float32Array), deviation: buffer(4, Float32Array),
-        curves: buffer(5, Float32Array), offsets: buffer(6, Uint32Array),
-        vertices: wasm.cn_stat(0), faceCount: wasm.cn_stat(1), curveVertices: wasm.cn_stat(2), patches: wasm.cn_stat(3),
-        range: wasm.cn_stat(4), deviationMax: wasm.cn_stat(5), warnings: text(),
-      };
-    });
+    const net = await networkText();
+    const result = await solver.call('surface', net.text, net.format, +$('method').value, vertices, soft, +$('quality').value);
+    if (mine !== solveCount) return;
     const ms = performance.now() - t0;
     state.result = result;
+    state.errorCurve = -1;
     show(result);
     const stats = $('stats');
     stats.dataset.vertices = String(result.vertices);
@@ -209,30 +277,46 @@ async function solve() {
     stats.textContent = `${result.vertices} vertices (${result.curveVertices} on curves), ${result.faceCount} faces, ${result.patches} patches, ${ms.toFixed(0)} ms`;
     if (result.warnings) $('message').textContent = 'warning: ' + result.warnings;
   } catch (e) {
+    if (e.cancelled || mine !== solveCount) return;
+    state.result = null;
+    mesh.visible = false;
+    state.errorCurve = e.curve ?? -1;
     $('message').textContent = e.message;
+    highlight();
   } finally {
-    solving = false;
-    if (again) { again = false; solve(); }
+    if (mine === solveCount) solvingIndicator(false);
   }
 }
 
-function setNetwork(name, body, format) {
-  // A network that does not parse gets no curve list; the solve reports the error with its
-  // line and column.
-  const count = withText(body, (p, n) => wasm.cn_curve_count(p, n, format));
+async function setNetwork(name, body, format) {
   state.name = name; state.base = body; state.format = format; state.fitted = false;
+  state.result = null; state.errorCurve = -1;
   const sel = $('curve');
   sel.innerHTML = '';
-  for (let i = 0; i < (count === 0xffffffff ? 0 : count); i++) sel.add(new Option(`curve ${i}`, String(i)));
+  // A network that does not parse gets no curve list; the solve reports the error with its
+  // line and column.
+  const count = await util.call('curveCount', body, format);
+  for (let i = 0; i < count; i++) sel.add(new Option(`curve ${i}`, String(i)));
   $('angle').value = 0;
   updateLabels();
+  // The curves at once, the surface when it is solved.
+  if (count > 0) {
+    try {
+      const c = await util.call('curves', body, format);
+      mesh.visible = false;
+      showCurves(c);
+      fit(curveLines.geometry);
+    } catch { /* the solve reports it */ }
+  }
   solve();
 }
 
-function loadExample(name) {
-  const rc = withText(name, (p, n) => wasm.cn_example(p, n));
-  if (rc !== 0) { $('message').textContent = text(); return; }
-  setNetwork(name, text(), 0);
+async function loadExample(name) {
+  try {
+    setNetwork(name, await util.call('example', name), 0);
+  } catch (e) {
+    $('message').textContent = e.message;
+  }
 }
 
 async function loadFile(file) {
@@ -240,6 +324,68 @@ async function loadFile(file) {
   if (!(ext in FORMATS)) { $('message').textContent = `${file.name}: use a .json, .obj or .net network`; return; }
   setNetwork(file.name, await file.text(), FORMATS[ext]);
 }
+
+// ---- Downloads ----
+function save(bytes, name, type) {
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(new Blob([bytes], { type }));
+  a.download = name;
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+}
+const stem = () => state.name.replace(/\.[^.]*$/, '') || 'network';
+const MESH_FORMATS = { ply: [0, 'application/octet-stream'], obj: [1, 'text/plain'], glb: [2, 'model/gltf-binary'] };
+for (const [ext, [code, type]] of Object.entries(MESH_FORMATS)) {
+  $(`download-${ext}`).addEventListener('click', async () => {
+    try { save(await solver.call('exportMesh', code), `${stem()}.${ext}`, type); } catch (e) { $('message').textContent = e.message; }
+  });
+}
+$('download-network').addEventListener('click', async () => {
+  try {
+    // The network with the turned normals, as JSON (the library's writer).
+    const curve = +$('curve').value;
+    const json = await util.call('rotate', state.base, state.format, curve >= 0 ? curve : 0, +$('angle').value || 0);
+    save(json, `${stem()}-edited.json`, 'application/json');
+  } catch (e) { $('message').textContent = e.message; }
+});
+
+// ---- Picking a curve in the view ----
+const raycaster = new THREE.Raycaster();
+/** The curve under the pixel (x, y) of the canvas, or -1. */
+function curveAt(x, y) {
+  const rect = renderer.domElement.getBoundingClientRect();
+  const ndc = new THREE.Vector2(2 * (x - rect.left) / rect.width - 1, 1 - 2 * (y - rect.top) / rect.height);
+  raycaster.setFromCamera(ndc, camera);
+  const hit = raycaster.intersectObject(curveLines, false)[0];
+  return hit ? segCurve[hit.index / 2 | 0] ?? -1 : -1;
+}
+function selectCurve(k) {
+  if (!(k >= 0) || k >= $('curve').options.length) return;
+  if (+$('curve').value !== k) {
+    $('curve').value = String(k);
+    if (+$('angle').value !== 0) { $('angle').value = 0; updateLabels(); solve(); }
+  }
+  highlight();
+}
+let downAt = null;
+renderer.domElement.addEventListener('pointerdown', (e) => { downAt = [e.clientX, e.clientY]; });
+renderer.domElement.addEventListener('pointerup', (e) => {
+  // A click, not the end of a drag of the orbit controls.
+  if (downAt && Math.hypot(e.clientX - downAt[0], e.clientY - downAt[1]) < 4) selectCurve(curveAt(e.clientX, e.clientY));
+  downAt = null;
+});
+/** For tests: the page pixel of sample `i` of curve `k`. */
+window.curvenetViewer = {
+  screenPoint(k, i) {
+    const c = state.curves;
+    const j = c.offsets[k] + i;
+    const v = new THREE.Vector3(c.curves[3 * j], c.curves[3 * j + 1], c.curves[3 * j + 2]).project(camera);
+    const rect = renderer.domElement.getBoundingClientRect();
+    return [rect.left + (v.x + 1) / 2 * rect.width, rect.top + (1 - v.y) / 2 * rect.height];
+  },
+};
 
 // ---- Controls ----
 function updateLabels() {
@@ -253,7 +399,7 @@ const debounced = () => { updateLabels(); clearTimeout(timer); timer = setTimeou
 $('example').addEventListener('change', (e) => loadExample(e.target.value));
 $('file').addEventListener('change', (e) => e.target.files[0] && loadFile(e.target.files[0]));
 for (const id of ['vertices', 'soft', 'angle']) $(id).addEventListener('input', debounced);
-for (const id of ['method', 'quality', 'curve']) $(id).addEventListener('change', () => { if (id === 'curve') $('angle').value = 0; debounced(); });
+for (const id of ['method', 'quality', 'curve']) $(id).addEventListener('change', () => { if (id === 'curve') { $('angle').value = 0; highlight(); } debounced(); });
 $('coloring').addEventListener('change', () => { $('message').textContent = ''; updateColoring(); });
 $('curves').addEventListener('change', updateColoring);
 const drop = $('drop');

@@ -113,7 +113,7 @@ def _result(t):
 
 
 def surface(network, method=None, spacing=None, vertices=None, soft=None, iterations=None,
-            *, preset="default", **options):
+            *, preset="default", progress=None, **options):
     """Surfaces ``network`` (a :class:`Network`): ``(V (n,3) float64, F (m,3) int64, info)``.
 
     ``preset``: ``"default"``, ``"fast"`` (planar patching, no 3D iteration: one
@@ -134,9 +134,14 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     :class:`SurfacingWarning`), ``num_curve`` (the first ``num_curve`` vertices lie on the
     curves), ``curve`` (n,) bool, ``normals`` (n,3), ``mean_curvature`` (n,),
     ``propagated_normals`` (n,3) or ``None``.
+
+    ``progress``: an optional callable ``progress(stage, seconds, detail)``, called after each
+    stage (``"nodes"``, ``"cycles"``, ``"resample"``, ``"tessellate"``, ``"first solve"``,
+    each ``"iteration"``, ``"solve"``) with its seconds and a detail line — for a progress bar
+    on long runs. An exception it raises is raised after the run.
     """
     given = dict(method=method, spacing=spacing, vertices=vertices, soft=soft, iterations=iterations, **options)
-    return _result(_curvenet._surface(network, _options(preset, given)))
+    return _result(_curvenet._surface(network, _options(preset, given), progress))
 
 
 _NETWORK_EXTENSIONS = (".json", ".obj", ".net")

@@ -1,7 +1,7 @@
 """Type stubs of curvenet (NumPy arrays: shapes in the docstrings)."""
 
 import os
-from typing import Any, Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -74,6 +74,7 @@ def surface(
     iterations: Optional[int] = None,
     *,
     preset: Preset = "default",
+    progress: Optional[Callable[[str, float, str], Any]] = None,
     w1: Optional[float] = None,
     patching: Optional[Literal["planar", "conformal"]] = None,
     inner_steps: Optional[int] = None,

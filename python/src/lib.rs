@@ -368,15 +368,35 @@ fn with_attributes(network: &PyNetwork, options: &Options) -> PyResult<Options> 
     Ok(o)
 }
 
+/// `progress`: a callable `(stage, seconds, detail)` called after each stage of the run (and
+/// each 3D iteration), with the GIL; its first exception is raised after the run.
 #[pyfunction]
+#[pyo3(signature = (network, options, progress=None))]
 fn _surface<'py>(
     py: Python<'py>,
     network: &PyNetwork,
     options: &PyOptions,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
     let opts = with_attributes(network, &options.inner)?;
     let net = &network.inner;
-    let s = py.detach(|| curvenet::surface(net, &opts)).map_err(err)?;
+    let raised: std::sync::Mutex<Option<PyErr>> = std::sync::Mutex::new(None);
+    let s = py
+        .detach(|| match &progress {
+            None => curvenet::surface(net, &opts),
+            Some(callback) => curvenet::surface_with_progress(net, &opts, &mut |stage, seconds, detail| {
+                Python::attach(|py| {
+                    if let Err(e) = callback.call1(py, (stage, seconds, detail)) {
+                        let mut slot = raised.lock().unwrap_or_else(|p| p.into_inner());
+                        slot.get_or_insert(e);
+                    }
+                })
+            }),
+        })
+        .map_err(err)?;
+    if let Some(e) = raised.into_inner().unwrap_or_else(|p| p.into_inner()) {
+        return Err(e);
+    }
     result(py, s)
 }
 

@@ -181,7 +181,7 @@ def test_options_come_from_the_library():
     stub = ast.parse((Path(curvenet.__file__).parent / "__init__.pyi").read_text())
     for node in ast.walk(stub):
         if isinstance(node, ast.FunctionDef) and node.name in ("surface", "__init__"):
-            args = {a.arg for a in node.args.args + node.args.kwonlyargs} - {"self", "network", "preset"}
+            args = {a.arg for a in node.args.args + node.args.kwonlyargs} - {"self", "network", "preset", "progress"}
             if node.name == "surface" or "network" in {a.arg for a in node.args.args}:
                 assert args == names, (node.name, args ^ names)
     # The CLI has a flag for each.
@@ -437,3 +437,21 @@ def test_surface_files_on_a_dask_cluster(tmp_path):
         workers = client.run(lambda: 1)
     assert len(workers) == 2
     _check_reports(reports, folder)
+
+
+def test_progress_callback():
+    """The callback sees every stage in order, the 3D iterations among them; its exception is
+    raised after the run."""
+    seen = []
+    V, F, info = curvenet.surface(curvenet.example("sphere"), vertices=3000,
+                                  progress=lambda stage, seconds, detail: seen.append((stage, seconds, detail)))
+    stages = [s for s, _, _ in seen]
+    assert stages[:4] == ["nodes", "cycles", "resample", "tessellate"], stages
+    assert stages[-1] == "solve" and "first solve" in stages
+    assert stages.count("iteration") == info["iterations"] >= 1
+    assert all(t >= 0 for _, t, _ in seen)
+
+    def boom(*_):
+        raise KeyError("stop")
+    with pytest.raises(KeyError):
+        curvenet.surface(curvenet.example("sphere"), vertices=3000, progress=boom)

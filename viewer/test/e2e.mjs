@@ -3,8 +3,11 @@
 // for the surface, checks the vertex count on the page against the command-line tool's count
 // for the same options, checks that the canvas shows a red (positive curvature) surface, turns
 // a curve's normals on the cylinder and checks the re-solve, loads a 3D sketch without normals
-// (OBJ edge soup) as a file and checks its vertex count against the CLI's, and saves
-// screenshots in viewer/test/out/.
+// (OBJ edge soup) as a file and checks its vertex count against the CLI's, shows an error's
+// curve, selects a curve by a click in the view, counts the frames the page paints during a
+// 100k-vertex default solve (the solve runs in a Web Worker), downloads the mesh (PLY, GLB) and
+// the edited network, checks that a newer request ends an older solve, and saves screenshots
+// in viewer/test/out/.
 import { chromium } from 'playwright-core';
 import http from 'node:http';
 import fs from 'node:fs';
@@ -99,6 +102,80 @@ try {
   console.log(`teapot sketch (no normals): ${await page.textContent('#stats')}`);
   if (sketchShown !== sketchVertices) fail(`the page reports ${sketchShown} vertices for the sketch, the CLI ${sketchVertices}`);
   await page.screenshot({ path: path.join(out, 'teapot-sketch.png') });
+
+  // An error names a curve: the message says so and the curve is highlighted.
+  const sphereNet = JSON.parse(fs.readFileSync(path.join(tmp, 'sphere.json'), 'utf8'));
+  sphereNet.curves[1].normals[5] = [0, 0, 0];
+  const badFile = path.join(tmp, 'bad-normal.json');
+  fs.writeFileSync(badFile, JSON.stringify(sphereNet));
+  await page.setInputFiles('#file', badFile);
+  await page.waitForFunction(() => document.getElementById('message').dataset.errorCurve !== '-1', null, { timeout: 60000 });
+  const badMessage = await page.textContent('#message');
+  const errorCurve = await page.getAttribute('#message', 'data-error-curve');
+  console.log(`error on curve ${errorCurve}: ${badMessage}`);
+  if (errorCurve !== '1' || !badMessage.includes('curve 1')) fail(`the error does not name curve 1: ${errorCurve} ${badMessage}`);
+  await page.screenshot({ path: path.join(out, 'error-curve.png') });
+
+  // A click on a curve in the view selects it.
+  await page.selectOption('#example', 'sphere');
+  await page.waitForFunction(() => document.getElementById('stats').dataset.solving === '0' && document.getElementById('curve').options.length === 3 && +document.getElementById('stats').dataset.vertices > 0, null, { timeout: 60000 });
+  const [cx, cy] = await page.evaluate(() => window.curvenetViewer.screenPoint(2, 10));
+  await page.mouse.click(cx, cy);
+  const picked = await page.inputValue('#curve');
+  console.log(`clicked at (${cx.toFixed(0)}, ${cy.toFixed(0)}): curve ${picked} selected`);
+  if (picked !== '2') fail(`a click on curve 2 selected curve ${picked}`);
+
+  // The page keeps painting while a 100k-vertex default-quality solve runs in the worker.
+  await page.selectOption('#quality', '1');
+  await page.fill('#vertices', '5');
+  await page.dispatchEvent('#vertices', 'input');
+  await page.waitForFunction(() => document.getElementById('stats').dataset.solving === '1', null, { timeout: 10000 });
+  const solveStart = Date.now();
+  const painting = await page.evaluate(() => new Promise((resolve) => {
+    let frames = 0;
+    const t0 = performance.now();
+    const tick = () => {
+      frames++;
+      if (performance.now() - t0 < 1500) requestAnimationFrame(tick);
+      else resolve({ frames, solving: document.getElementById('stats').dataset.solving });
+    };
+    requestAnimationFrame(tick);
+  }));
+  console.log(`during the 100k solve: ${painting.frames} frames painted in 1.5 s (still solving: ${painting.solving === '1'})`);
+  if (painting.solving !== '1') fail('the solve ended before the frames were counted: not a long solve');
+  if (painting.frames < 30) fail(`the page painted ${painting.frames} frames in 1.5 s during the solve: frozen`);
+  await page.waitForFunction(() => document.getElementById('stats').dataset.solving === '0', null, { timeout: 600000 });
+  const big = +(await page.getAttribute('#stats', 'data-vertices'));
+  console.log(`100k default solve: ${await page.textContent('#stats')} (${((Date.now() - solveStart) / 1000).toFixed(1)} s)`);
+  if (!(big > 90000)) fail(`the 100k solve gave ${big} vertices`);
+
+  // Downloads: the mesh has the vertex count shown; the GLB is glTF.
+  const download = async (id) => {
+    const [d] = await Promise.all([page.waitForEvent('download'), page.click(id)]);
+    const file = path.join(tmp, d.suggestedFilename());
+    await d.saveAs(file);
+    return { name: d.suggestedFilename(), bytes: fs.readFileSync(file) };
+  };
+  const ply = await download('#download-ply');
+  const header = ply.bytes.subarray(0, 400).toString('latin1');
+  const plyVertices = +(/element vertex (\d+)/.exec(header) || [])[1];
+  console.log(`downloaded ${ply.name}: ${plyVertices} vertices, ${ply.bytes.length} bytes`);
+  if (plyVertices !== big) fail(`the downloaded PLY has ${plyVertices} vertices, the page shows ${big}`);
+  const glb = await download('#download-glb');
+  if (glb.bytes.subarray(0, 4).toString('latin1') !== 'glTF') fail('the downloaded GLB is not glTF');
+  const net = await download('#download-network');
+  const edited = JSON.parse(net.bytes.toString('utf8'));
+  if (edited.curves.length !== 3) fail(`the downloaded network has ${edited.curves.length} curves`);
+
+  // A newer request ends an older one: a long solve, then at once a small one.
+  await page.selectOption('#method', '1');
+  await page.waitForFunction(() => document.getElementById('stats').dataset.solving === '1', null, { timeout: 10000 });
+  await page.fill('#vertices', '3.5');
+  await page.dispatchEvent('#vertices', 'input');
+  const cancelStart = Date.now();
+  await page.waitForFunction(() => document.getElementById('stats').dataset.solving === '0' && +document.getElementById('stats').dataset.vertices < 10000, null, { timeout: 120000 });
+  console.log(`newer request: ${await page.textContent('#stats')} after ${((Date.now() - cancelStart) / 1000).toFixed(1)} s`);
+
   if (errors.length) fail(`errors in the page: ${errors.join('; ')}`);
   console.log('viewer e2e: ok');
 } finally {

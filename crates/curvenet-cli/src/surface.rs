@@ -53,6 +53,9 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
         opts.cauchy.attributes =
             curvenet::methods::andrews2011::NetworkAttributes::read(&a.input)?.map(std::sync::Arc::new);
     }
+    if opts.method == curvenet::Method::NormalControl {
+        progress.expect_iterations(opts.iterate.iterations);
+    }
     let mut surface = curvenet::surface_with_progress(&network, &opts, &mut |s, t, d| progress.stage(s, t, d))?;
     for w in &surface.warnings {
         eprintln!("warning: {w}");

@@ -38,6 +38,12 @@ struct Output {
 thread_local! {
     static OUTPUT: RefCell<Output> = RefCell::new(Output::default());
     static TEXT: RefCell<String> = const { RefCell::new(String::new()) };
+    /// The last surface, for [`cn_export_mesh`].
+    static LAST: RefCell<Option<curvenet::Surface>> = const { RefCell::new(None) };
+    /// The bytes of the last export.
+    static BYTES: RefCell<Vec<u8>> = const { RefCell::new(Vec::new()) };
+    /// The curve of the last error (`u32::MAX`: none or unknown).
+    static ERROR_CURVE: RefCell<u32> = const { RefCell::new(u32::MAX) };
 }
 
 fn set_text(text: String) {
@@ -46,12 +52,23 @@ fn set_text(text: String) {
 
 fn finish(result: Result<(), Error>) -> u32 {
     match result {
-        Ok(()) => 0,
+        Ok(()) => {
+            ERROR_CURVE.with(|c| *c.borrow_mut() = u32::MAX);
+            0
+        }
         Err(e) => {
+            let curve = e.at().curve.map_or(u32::MAX, |c| c.min(u32::MAX as usize - 1) as u32);
+            ERROR_CURVE.with(|c| *c.borrow_mut() = curve);
             set_text(e.to_string());
             e.exit_code() as u32
         }
     }
+}
+
+/// The curve the last error names (the viewer highlights it), or `u32::MAX`.
+#[no_mangle]
+pub extern "C" fn cn_error_curve() -> u32 {
+    ERROR_CURVE.with(|c| *c.borrow())
 }
 
 /// Memory for `len` bytes that JavaScript fills (free with [`cn_free`]).
@@ -147,7 +164,69 @@ pub fn surface_into_output(network: &Network, options: &Options) -> Result<(), E
     let warnings: Vec<String> = surface.warnings.iter().map(|w| w.to_string()).collect();
     set_text(warnings.join("\n"));
     OUTPUT.with(|o| *o.borrow_mut() = out);
+    LAST.with(|l| *l.borrow_mut() = Some(surface));
     Ok(())
+}
+
+/// The curves of a network as polylines (buffers 5 and 6; the others emptied): what the viewer
+/// shows before the surface is there, and where an error's curve is highlighted.
+fn curves_into_output(network: &Network) {
+    let mut out = Output::default();
+    for c in &network.curves {
+        out.curve_offsets.push((out.curve_points.len() / 3) as u32);
+        out.curve_points.extend(flat(&c.points));
+        if c.closed && !c.points.is_empty() {
+            out.curve_points.extend(flat(&c.points[..1]));
+        }
+    }
+    out.curve_offsets.push((out.curve_points.len() / 3) as u32);
+    OUTPUT.with(|o| *o.borrow_mut() = out);
+}
+
+/// The network in `ptr[..len]` as polylines in buffers 5 (points) and 6 (offsets).
+///
+/// # Safety
+/// `ptr` must point to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn cn_network_curves(ptr: *const u8, len: usize, format: u32) -> u32 {
+    finish((|| {
+        let text = text_arg(ptr, len)?;
+        curves_into_output(&parse_network(&text, format_of(format)?, "network")?);
+        Ok(())
+    })())
+}
+
+/// The last surface as a mesh file (`format`: 0 PLY, 1 OBJ, 2 GLB, 3 OFF, as the command line
+/// writes them) in the bytes buffer ([`cn_bytes_ptr`], [`cn_bytes_len`]).
+#[no_mangle]
+pub extern "C" fn cn_export_mesh(format: u32) -> u32 {
+    finish((|| {
+        let ext = match format {
+            0 => "ply",
+            1 => "obj",
+            2 => "glb",
+            3 => "off",
+            _ => return Err(Error::usage(format!("unknown mesh format code {format}"))),
+        };
+        let bytes = LAST.with(|l| match l.borrow().as_ref() {
+            Some(s) => curvenet::io::mesh_bytes(ext, s.mesh_data()),
+            None => Err(Error::usage("no surface to export yet")),
+        })?;
+        BYTES.with(|b| *b.borrow_mut() = bytes);
+        Ok(())
+    })())
+}
+
+/// Address of the bytes buffer (the last export).
+#[no_mangle]
+pub extern "C" fn cn_bytes_ptr() -> *const u8 {
+    BYTES.with(|b| b.borrow().as_ptr())
+}
+
+/// Length of the bytes buffer.
+#[no_mangle]
+pub extern "C" fn cn_bytes_len() -> usize {
+    BYTES.with(|b| b.borrow().len())
 }
 
 /// Surfaces the network in `ptr[..len]` (`format`: 0 JSON, 1 OBJ, 2 .net) with `method`
@@ -300,6 +379,21 @@ mod tests {
         assert_eq!(call_surface(&json, 9), 2);
         assert_eq!(unsafe { cn_rotate_normals(json.as_ptr(), json.len(), 0, 7, 10.0) }, 2);
         assert!(text().contains("curve 7"));
+        // Exports of the last surface; the curve an error names.
+        assert_eq!(call_surface(&json, 0), 0);
+        assert_eq!(cn_export_mesh(0), 0);
+        let ply = BYTES.with(|b| b.borrow().clone());
+        let header = String::from_utf8_lossy(&ply[..200]).into_owned();
+        assert!(header.contains(&format!("element vertex {}", cn_stat(0))), "{header}");
+        assert_eq!(cn_export_mesh(2), 0);
+        assert_eq!(&BYTES.with(|b| b.borrow()[..4].to_vec()), b"glTF");
+        assert_eq!(cn_export_mesh(7), 2);
+        let bad = json.replacen("\"normals\": [\n        [", "\"normals\": [\n        [0, 0, 0], [", 1);
+        assert_eq!(call_surface(&bad, 0), 1, "{}", text());
+        assert_eq!(cn_error_curve(), 0, "{}", text());
+        assert_eq!(unsafe { cn_network_curves(json.as_ptr(), json.len(), 0) }, 0);
+        assert_eq!(cn_buffer_len(6), 4);
+        assert_eq!(cn_error_curve(), u32::MAX);
         let cyl = "cylinder";
         assert_eq!(unsafe { cn_example(cyl.as_ptr(), cyl.len()) }, 0);
         let c = text();

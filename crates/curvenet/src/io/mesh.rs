@@ -94,6 +94,32 @@ pub fn write_mesh(path: &Path, mesh: MeshData<'_>) -> Result<()> {
 /// Writes a mesh under a temporary name beside `path`; [`Staged::commit`] moves it into place.
 pub fn stage_mesh(path: &Path, mesh: MeshData<'_>) -> Result<Staged> {
     let format = mesh_format(path)?;
+    check_mesh_data(mesh)?;
+    Staged::write(path, |w| write_format(w, format, mesh))
+}
+
+/// The bytes of a mesh file in the format of extension `ext` (`ply`, `obj`, `off`, `glb`),
+/// as [`write_mesh`] writes it: for a download (the browser viewer) or a stream.
+pub fn mesh_bytes(ext: &str, mesh: MeshData<'_>) -> Result<Vec<u8>> {
+    let format = mesh_format(Path::new(&format!("mesh.{ext}")))?;
+    check_mesh_data(mesh)?;
+    let mut out = Vec::new();
+    write_format(&mut out, format, mesh).map_err(|e| Error::internal(format!("writing the mesh: {e}")))?;
+    Ok(out)
+}
+
+fn write_format(w: &mut dyn Write, format: MeshFormat, mesh: MeshData<'_>) -> std::io::Result<()> {
+    match format {
+        MeshFormat::Obj => write_obj(w, mesh),
+        MeshFormat::Ply => write_ply(w, mesh),
+        MeshFormat::Off => write_off(w, mesh),
+        MeshFormat::Glb => super::glb::write_glb(w, mesh),
+    }
+}
+
+/// One attribute entry per vertex, faces in range, every value finite: a usage error (sizes)
+/// or a numerical failure (values) otherwise, before anything is written.
+fn check_mesh_data(mesh: MeshData<'_>) -> Result<()> {
     let n = mesh.positions.len();
     for (name, len) in [
         ("normals", mesh.normals.map(|a| a.len())),
@@ -121,12 +147,7 @@ pub fn stage_mesh(path: &Path, mesh: MeshData<'_>) -> Result<Staged> {
     if let Some(i) = mesh.mean_curvature.and_then(|h| h.iter().position(|h| !h.is_finite())) {
         return Err(Error::numerical(format!("vertex {i}: its mean curvature is not finite; nothing was written")));
     }
-    Staged::write(path, |w| match format {
-        MeshFormat::Obj => write_obj(w, mesh),
-        MeshFormat::Ply => write_ply(w, mesh),
-        MeshFormat::Off => write_off(w, mesh),
-        MeshFormat::Glb => super::glb::write_glb(w, mesh),
-    })
+    Ok(())
 }
 
 /// Formats `count` records in chunks (each record appended to a byte buffer by `record`) and

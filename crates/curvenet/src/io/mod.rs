@@ -11,7 +11,7 @@ mod mesh;
 mod net;
 mod obj;
 
-pub use mesh::{check_mesh_path, parse_mesh, read_mesh, stage_mesh, write_mesh, MeshData, MeshFile};
+pub use mesh::{check_mesh_path, mesh_bytes, parse_mesh, read_mesh, stage_mesh, write_mesh, MeshData, MeshFile};
 
 use crate::error::{Error, Result};
 use crate::network::Network;

@@ -199,6 +199,18 @@ impl Iterated {
         start: MethodResult,
         t: &mut SolveTimings,
     ) -> Result<(MethodResult, IterationReport)> {
+        self.run_reporting(mesh, start, t, &mut |_, _, _| {})
+    }
+
+    /// [`Iterated::run`], calling `step(k, of, update)` after iteration `k` of at most `of`
+    /// (`update`: its largest vertex move): progress for long runs.
+    pub fn run_reporting(
+        &mut self,
+        mesh: &Mesh,
+        start: MethodResult,
+        t: &mut SolveTimings,
+        step: &mut dyn FnMut(usize, usize, f64),
+    ) -> Result<(MethodResult, IterationReport)> {
         let params = self.params;
         let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
         let mut report = IterationReport { updates: Vec::new(), stop: Stop::MaxIterations };
@@ -222,6 +234,7 @@ impl Iterated {
                 update > u[u.len() - 1] && u[u.len() - 1] > u[u.len() - 2]
             };
             report.updates.push(update);
+            step(report.updates.len(), params.options.iterations, update);
             if growing {
                 report.stop = Stop::Diverging;
                 break;

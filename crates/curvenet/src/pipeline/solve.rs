@@ -121,14 +121,18 @@ pub(crate) fn solve_prepared(
     let state = slot.get_or_insert_with(|| Kept { method: make_method(options, &prepared, &ops), iterated: None });
     let mut result = state.method.solve(mesh, &ops, &mut st)?;
     drop(ops);
+    let iterating = options.iterate.iterations > 0 && options.method == Method::NormalControl;
+    if iterating {
+        progress("first solve", st.operators + st.factor + st.solve, options.method.name());
+    }
     if !keep {
         // Lower peak memory: the iterations factorise their own systems.
         state.method.release();
     }
     let mut iteration_report: (Vec<f64>, Option<Stop>) = (Vec::new(), None);
     // The baselines keep the weights of their patching's domains, as in [CG] Table 1.
-    if options.iterate.iterations > 0 && options.method == Method::NormalControl {
-        let (r, report) = iterate(options, &prepared, result, state, &mut st)?;
+    if iterating {
+        let (r, report) = iterate(options, &prepared, result, state, &mut st, progress)?;
         result = r;
         let stopped = |why: &str| {
             Warning::new(format!(
@@ -163,6 +167,7 @@ fn iterate(
     result: MethodResult,
     state: &mut Kept,
     st: &mut crate::solve::SolveTimings,
+    progress: Progress<'_>,
 ) -> Result<(MethodResult, crate::methods::iterated::IterationReport)> {
     let mesh = prepared.seams.as_ref().map_or(&prepared.mesh, |s| &s.mesh);
     let d = prepared.spacing;
@@ -184,7 +189,10 @@ fn iterate(
     };
     let iterated = state.iterated.get_or_insert_with(|| Iterated::new(params));
     iterated.params = params;
-    iterated.run(mesh, result, st)
+    let clock = Instant::now();
+    iterated.run_reporting(mesh, result, st, &mut |k, of, update| {
+        progress("iteration", seconds_since(clock), &format!("{k} of at most {of}, largest move {update:.2e}"));
+    })
 }
 
 /// The surface of a finished solve: the result's positions on the prepared mesh, its normals
