@@ -370,12 +370,12 @@ def test_runs_too_large_for_the_memory_raise_memory_error():
 
 def test_outputs_open_in_other_tools(tmp_path):
     """libigl reads the PLY (it refuses mixed property types), trimesh reads the PLY and the
-    GLB (positions, faces, the mean curvature as a custom attribute)."""
+    GLB (positions, faces, the mean curvature as a custom attribute); both read OBJ and OFF."""
     igl = pytest.importorskip("igl")
     trimesh = pytest.importorskip("trimesh")
     net = tmp_path / "sphere.json"
     subprocess.run([str(CLI), "example", "sphere", "-o", str(net)], check=True, capture_output=True)
-    for ext in ["ply", "glb"]:
+    for ext in ["ply", "glb", "obj", "off"]:
         subprocess.run([str(CLI), "surface", str(net), "-o", str(tmp_path / f"s.{ext}"), "-q"], check=True)
     V, F = igl.read_triangle_mesh(str(tmp_path / "s.ply"))
     assert V.shape[1] == 3 and F.shape[1] == 3 and len(F) > 1000
@@ -387,6 +387,11 @@ def test_outputs_open_in_other_tools(tmp_path):
     assert np.abs(np.linalg.norm(glb.vertices, axis=1) - 1).max() < 2e-3
     H = np.asarray(glb.vertex_attributes["_MEAN_CURVATURE"]).ravel()
     assert len(H) == len(glb.vertices) and abs(np.median(H) - 1) < 0.02
+    for ext in ["obj", "off"]:  # the text formats too, by both readers
+        m = trimesh.load(str(tmp_path / f"s.{ext}"), force="mesh", process=False)
+        assert len(m.faces) == len(F) and np.abs(np.linalg.norm(m.vertices, axis=1) - 1).max() < 2e-3, ext
+        Vi, Fi = igl.read_triangle_mesh(str(tmp_path / f"s.{ext}"))
+        assert np.abs(Vi - V).max() < 1e-12 and (Fi == F).all(), ext
 
 
 def _batch_folder(tmp_path):

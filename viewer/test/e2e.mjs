@@ -163,6 +163,18 @@ try {
   if (plyVertices !== big) fail(`the downloaded PLY has ${plyVertices} vertices, the page shows ${big}`);
   const glb = await download('#download-glb');
   if (glb.bytes.subarray(0, 4).toString('latin1') !== 'glTF') fail('the downloaded GLB is not glTF');
+  // three.js's own GLTFLoader reads it: one mesh, positions, normals, the curvature attribute.
+  const gltf = await page.evaluate(async (b64) => {
+    const { GLTFLoader } = await import('three/addons/loaders/GLTFLoader.js');
+    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const g = await new GLTFLoader().parseAsync(bytes.buffer, '');
+    const meshes = [];
+    g.scene.traverse((o) => { if (o.isMesh) meshes.push(o); });
+    const a = meshes[0].geometry.attributes;
+    return { meshes: meshes.length, positions: a.position.count, normals: a.normal?.count, curvature: a._mean_curvature?.count ?? a._MEAN_CURVATURE?.count, triangles: meshes[0].geometry.index.count / 3 };
+  }, glb.bytes.toString('base64'));
+  console.log(`three.js GLTFLoader: ${JSON.stringify(gltf)}`);
+  if (gltf.meshes !== 1 || !(gltf.positions >= big) || gltf.normals !== gltf.positions || gltf.curvature !== gltf.positions) fail(`three.js read the GLB as ${JSON.stringify(gltf)}`);
   const net = await download('#download-network');
   const edited = JSON.parse(net.bytes.toString('utf8'));
   if (edited.curves.length !== 3) fail(`the downloaded network has ${edited.curves.length} curves`);
