@@ -118,7 +118,13 @@ pub fn run(a: &BatchArgs) -> Result<(), Error> {
                     let line = serde_json::to_value(&report).unwrap_or(Value::Null);
                     let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
                     let (report, failed) = &mut *guard;
-                    let _ = writeln!(report, "{line}").and_then(|_| report.flush());
+                    if let Err(e) = writeln!(report, "{line}").and_then(|_| report.flush()) {
+                        eprintln!(
+                            "warning: {}: the report line of {} was not written: {e}",
+                            report_path.display(),
+                            job.input.display()
+                        );
+                    }
                     if line["status"] != "ok" {
                         failed
                             .push((job.input.display().to_string(), line["error"].as_str().unwrap_or("").to_string()));
