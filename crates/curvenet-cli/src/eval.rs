@@ -113,5 +113,15 @@ pub fn run(a: &EvalArgs) -> Result<(), Error> {
     if let Some(h) = e.hausdorff {
         out!("Hausdorff distance {h:.4e}");
     }
+    if let Some(c) = &e.mean_curvature {
+        row("mean curvature error", &c.absolute);
+        out!(
+            "mean curvature, error relative to |H| = {:.4}: median {:.2} %, 99th percentile {:.2} %, max {:.2} %",
+            c.scale,
+            100.0 * c.relative_median,
+            100.0 * c.relative_p99,
+            100.0 * c.relative_max
+        );
+    }
     Ok(())
 }

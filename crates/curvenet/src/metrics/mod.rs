@@ -163,6 +163,50 @@ impl Truth {
         }
     }
 
+    /// Signed mean curvature at the closest point to `p` (`+1/r` on a sphere with outward
+    /// normals, the library's convention `L V = −2 H N`): `None` where the surface has none (a
+    /// crease or rim of `lens` and `can`). Ellipsoid: `H = (a² + b² + c² − |q|²) /
+    /// (2 a² b² c² (x²/a⁴ + y²/b⁴ + z²/c⁴)^{3/2})`; saddle `z = (x² − y²)/2` with upward
+    /// normals: `H = (x² − y²) / (2 (1 + x² + y²)^{3/2})`; torus: `½ (1/r + cos θ / ρ)`, `ρ`
+    /// the distance from the axis.
+    pub fn mean_curvature(&self, p: DVec3) -> Option<f64> {
+        let q = self.closest_point(p);
+        Some(match *self {
+            Truth::Sphere { radius, .. } => 1.0 / radius,
+            Truth::Torus { major, minor } => {
+                let rho = (q.x * q.x + q.y * q.y).sqrt();
+                0.5 * (1.0 / minor + (rho - major) / minor / rho)
+            }
+            Truth::Cylinder { radius } => 0.5 / radius,
+            Truth::Saddle => {
+                let w2 = 1.0 + q.x * q.x + q.y * q.y;
+                (q.x * q.x - q.y * q.y) / (2.0 * w2 * w2.sqrt())
+            }
+            Truth::Ellipsoid { axes } => {
+                let a2 = axes * axes;
+                let g = (q * q / (a2 * a2)).element_sum();
+                (a2.element_sum() - q.length_squared()) / (2.0 * a2.x * a2.y * a2.z * g * g.sqrt())
+            }
+            Truth::Plane { .. } => 0.0,
+            Truth::Lens { radius, .. } => {
+                if q.z.abs() < 1e-9 * radius {
+                    return None;
+                }
+                1.0 / radius
+            }
+            Truth::Can { radius, half_height } => {
+                let r = (q.x * q.x + q.y * q.y).sqrt();
+                let on_lid = (q.z.abs() - half_height).abs() < 1e-9 * half_height;
+                let on_side = (r - radius).abs() < 1e-9 * radius;
+                match (on_lid, on_side) {
+                    (true, true) => return None,
+                    (true, false) => 0.0,
+                    (false, _) => 0.5 / radius,
+                }
+            }
+        })
+    }
+
     /// Parses a truth specification: `sphere` (unit), `sphere:r`, `sphere:cx,cy,cz,r`,
     /// `torus:R,r` (axis z), `cylinder:r` (axis z), `ellipsoid:a,b,c`, `plane` (z = 0),
     /// `plane:nx,ny,nz,d` (n·x = d), `saddle` (z = (x² − y²)/2), `lens` / `lens:r,h` (two
@@ -521,6 +565,82 @@ pub struct Evaluation {
     pub normal_angle: DistanceStats,
     /// Angle between the propagated normals `N*` and the mesh's normals, when known.
     pub propagated_deviation: Option<DistanceStats>,
+    /// The discrete mean curvature against the truth's (analytic truths only).
+    pub mean_curvature: Option<CurvatureError>,
+}
+
+/// How far a mesh's discrete mean curvature (cotangent, [`crate::operators::cotan_mean_curvature`])
+/// is from the truth's, over the evaluated vertices off open borders where the truth has one:
+/// what curvature maps and isophotes show and distances hide.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct CurvatureError {
+    /// The scale errors are relative to: the largest `|H|` of the truth over those vertices
+    /// (the curvature itself on a sphere or cylinder).
+    pub scale: f64,
+    /// `|H_mesh − H_true|`, absolute.
+    pub absolute: DistanceStats,
+    /// `|H_mesh − H_true| / scale`: median, 99th percentile and maximum.
+    pub relative_median: f64,
+    /// 99th percentile of the relative error.
+    pub relative_p99: f64,
+    /// Largest relative error.
+    pub relative_max: f64,
+}
+
+/// The vertices on open borders (an edge of one face only).
+pub fn border_vertices(faces: &[[u32; 3]], n: usize) -> Vec<bool> {
+    let mut edges: Vec<(u32, u32)> =
+        faces.iter().flat_map(|f| (0..3).map(move |k| (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3])))).collect();
+    edges.sort_unstable();
+    let mut border = vec![false; n];
+    let mut i = 0;
+    while i < edges.len() {
+        let mut j = i + 1;
+        while j < edges.len() && edges[j] == edges[i] {
+            j += 1;
+        }
+        if j - i == 1 {
+            let (a, b) = edges[i];
+            for v in [a, b] {
+                if let Some(flag) = border.get_mut(v as usize) {
+                    *flag = true;
+                }
+            }
+        }
+        i = j;
+    }
+    border
+}
+
+/// [`CurvatureError`] of the mesh over the vertices `free` against `truth`; `None` when no
+/// vertex qualifies or the truth is flat (no scale).
+pub fn curvature_error(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    free: &[usize],
+    truth: &Truth,
+) -> Option<CurvatureError> {
+    let border = border_vertices(faces, positions.len());
+    let h = crate::operators::cotan_mean_curvature(faces, positions, &border);
+    let pairs: Vec<(f64, f64)> = free
+        .iter()
+        .filter(|&&i| !border[i])
+        .filter_map(|&i| truth.mean_curvature(positions[i]).map(|t| (h[i], t)))
+        .collect();
+    let scale = pairs.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    if pairs.is_empty() || !(scale > 0.0) {
+        return None;
+    }
+    let mut rel: Vec<f64> = pairs.iter().map(|(m, t)| (m - t).abs() / scale).collect();
+    rel.sort_by(f64::total_cmp);
+    let at = |q: f64| rel[((q * (rel.len() - 1) as f64).round() as usize).min(rel.len() - 1)];
+    Some(CurvatureError {
+        scale,
+        absolute: DistanceStats::of(pairs.iter().map(|(m, t)| (m - t).abs())),
+        relative_median: at(0.5),
+        relative_p99: at(0.99),
+        relative_max: at(1.0),
+    })
 }
 
 /// Measures a mesh against a ground truth over its vertices not flagged in `exclude` (the
@@ -549,6 +669,7 @@ pub fn evaluate(
         Reference::Analytic(truth) => {
             e.distance = DistanceStats::of(free.iter().map(|&i| truth.distance(positions[i])));
             e.normal_angle = DistanceStats::of(free.iter().map(|&i| angle(normals[i], truth.normal(positions[i]))));
+            e.mean_curvature = curvature_error(positions, faces, &free, &truth);
         }
         Reference::Mesh { positions: rp, faces: rf } => {
             let to_ref = MeshDistance::new(rp, rf);

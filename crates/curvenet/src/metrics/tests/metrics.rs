@@ -82,3 +82,79 @@ fn truth_specs() {
     assert!(matches!(Truth::parse("torus:4,x"), Some(Err(_))));
     assert_eq!(Truth::parse("reference.obj"), None);
 }
+
+/// A closed (u periodic, v periodic when `closed_v`) parametric grid, triangulated.
+fn grid(nu: usize, nv: usize, closed_v: bool, f: impl Fn(f64, f64) -> DVec3) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let rows = if closed_v { nv } else { nv + 1 };
+    let mut p = Vec::new();
+    for j in 0..rows {
+        for i in 0..nu {
+            p.push(f(i as f64 / nu as f64, j as f64 / nv as f64));
+        }
+    }
+    let id = |i: usize, j: usize| ((j % rows) * nu + i % nu) as u32;
+    let mut faces = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            faces.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            faces.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    (p, faces)
+}
+
+/// The truths' mean curvature against the cotangent curvature of fine parametric meshes: the
+/// formulas and their signs (outward normals, `+1/r` on a sphere) agree with the library's.
+#[test]
+fn analytic_mean_curvature_matches_fine_meshes() {
+    use std::f64::consts::TAU;
+    let torus = Truth::Torus { major: 4.0, minor: 2.0 };
+    let (tp, tf) = grid(400, 200, true, |u, v| {
+        let (su, cu) = (TAU * u).sin_cos();
+        let (sv, cv) = (TAU * v).sin_cos();
+        DVec3::new((4.0 + 2.0 * cv) * cu, (4.0 + 2.0 * cv) * su, 2.0 * sv)
+    });
+    let cyl = Truth::Cylinder { radius: 1.0 };
+    let (cp, cf) = grid(200, 100, false, |u, v| {
+        let (s, c) = (TAU * u).sin_cos();
+        DVec3::new(c, s, 2.0 * v - 1.0)
+    });
+    let saddle = Truth::Saddle;
+    // The saddle's graph over [−½, ½]², orientation upward.
+    let n = 120;
+    let mut sp = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f64 / n as f64 - 0.5, j as f64 / n as f64 - 0.5);
+            sp.push(DVec3::new(x, y, 0.5 * (x * x - y * y)));
+        }
+    }
+    let mut sf = Vec::new();
+    let sid = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    for j in 0..n {
+        for i in 0..n {
+            sf.push([sid(i, j), sid(i + 1, j), sid(i + 1, j + 1)]);
+            sf.push([sid(i, j), sid(i + 1, j + 1), sid(i, j + 1)]);
+        }
+    }
+    for (name, truth, p, f, tol) in
+        [("torus", torus, tp, tf, 0.01), ("cylinder", cyl, cp, cf, 0.01), ("saddle", saddle, sp, sf, 0.02)]
+    {
+        let free: Vec<usize> = (0..p.len()).collect();
+        let e = curvature_error(&p, &f, &free, &truth).unwrap();
+        assert!(e.relative_p99 < tol, "{name}: {e:?}");
+        // The sign: a flipped formula would be off by twice the curvature.
+        assert!(e.relative_max < 0.5, "{name}: {e:?}");
+    }
+    // Flat: no scale, no figure.
+    let (pp, pf) = grid(10, 10, false, |u, v| DVec3::new(u, v, 0.0));
+    let plane = Truth::Plane { normal: DVec3::Z, offset: 0.0 };
+    assert!(curvature_error(&pp, &pf, &(0..pp.len()).collect::<Vec<_>>(), &plane).is_none());
+    // The ellipsoid's formula against the sphere it becomes, and its extreme points.
+    let e = Truth::Ellipsoid { axes: DVec3::new(2.0, 1.0, 1.0) };
+    let h = e.mean_curvature(DVec3::new(0.0, 0.0, 2.0)).unwrap();
+    // At (0, 0, 1): principal curvatures c/a² = 1/4 (along x) and c/b² = 1.
+    assert!((h - 0.625).abs() < 1e-12, "{h}");
+    let s = Truth::Ellipsoid { axes: DVec3::splat(3.0) };
+    assert!((s.mean_curvature(DVec3::new(1.0, 2.0, 0.5)).unwrap() - 1.0 / 3.0).abs() < 1e-12);
+}
