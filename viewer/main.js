@@ -265,6 +265,7 @@ async function solve() {
     const soft = +$('soft').value;
     const t0 = performance.now();
     const net = await networkText();
+    if (mine !== solveCount) return; // a newer request came while the normals were turned
     const result = await solver.call('surface', net.text, net.format, +$('method').value, vertices, soft, +$('quality').value);
     if (mine !== solveCount) return;
     const ms = performance.now() - t0;
