@@ -144,39 +144,6 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     return _result(_curvenet._surface(network, _options(preset, given), progress))
 
 
-_NETWORK_EXTENSIONS = (".json", ".obj", ".net")
-
-
-def _expand_inputs(inputs):
-    """Files, folders (their .json/.obj/.net files, sorted) and glob patterns: the files, each
-    once. A folder without networks or a pattern matching nothing raises ``ValueError``."""
-    import glob as _glob
-    import os as _os
-
-    if isinstance(inputs, (str, _os.PathLike)):
-        inputs = [inputs]
-    out, seen = [], set()
-    for item in inputs:
-        item = _os.fspath(item)
-        if _os.path.isdir(item):
-            found = sorted(_os.path.join(item, f) for f in _os.listdir(item)
-                           if f.lower().endswith(_NETWORK_EXTENSIONS) and _os.path.isfile(_os.path.join(item, f)))
-            if not found:
-                raise ValueError(f"{item}: the folder holds no .json, .obj or .net file")
-        elif _os.path.exists(item) or not any(c in item for c in "*?["):
-            found = [item]
-        else:
-            found = sorted(p for p in _glob.glob(item, recursive=True) if _os.path.isfile(p))
-            if not found:
-                raise ValueError(f"{item}: the pattern matches no file")
-        for f in found:
-            key = _os.path.realpath(f)
-            if key not in seen:
-                seen.add(key)
-                out.append(f)
-    return out
-
-
 def _surface_file(job):
     """One network file to one mesh file (runs in a worker process): the report dict."""
     input_, output, preset, named = job
@@ -209,18 +176,13 @@ def surface_files(inputs, out_dir, *, client=None, jobs=None, format="ply", pres
         raise ValueError(f"format {format!r} is not ply, obj, off or glb")
     _options(preset, options)  # raises on a bad option before any work
     named = [(k, _text(k, v)) for k, v in options.items() if v is not None]
-    files = _expand_inputs(inputs)
+    if isinstance(inputs, (str, _os.PathLike)):
+        inputs = [inputs]
     out_dir = _os.fspath(out_dir)
+    # The library expands and names them, as `curvenet batch` does.
+    plan = _curvenet._plan_files([_os.fspath(i) for i in inputs], out_dir, format)
     _os.makedirs(out_dir, exist_ok=True)
-    used, work = set(), []
-    for f in files:
-        stem = _os.path.splitext(_os.path.basename(f))[0] or "network"
-        name, k = stem, 1
-        while name in used:
-            k += 1
-            name = f"{stem}-{k}"
-        used.add(name)
-        work.append((f, _os.path.join(out_dir, f"{name}.{format}"), preset, named))
+    work = [(i, o, preset, named) for i, o in plan]
     if not work:
         return []
     if client is not None:

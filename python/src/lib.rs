@@ -311,6 +311,18 @@ fn _surface_file(
     serde_json::to_string(&report).map_err(|e| usage(e.to_string()))
 }
 
+/// The jobs of a batch (`curvenet batch`'s expansion and naming): files, folders and glob
+/// patterns in `inputs`, each with its mesh `out_dir/STEM.FORMAT`, as `(input, output)`.
+#[pyfunction]
+fn _plan_files(inputs: Vec<String>, out_dir: &str, format: &str) -> PyResult<Vec<(String, String)>> {
+    use curvenet::pipeline::files::{expand_inputs, plan_outputs};
+    let files = expand_inputs(&inputs).map_err(err)?;
+    Ok(plan_outputs(&files, std::path::Path::new(out_dir), format)
+        .into_iter()
+        .map(|j| (j.input.display().to_string(), j.output.display().to_string()))
+        .collect())
+}
+
 /// The option table: `(name, value_name, choices, help, default)` per option.
 #[pyfunction]
 fn _option_specs() -> Vec<(&'static str, &'static str, Vec<&'static str>, &'static str, String)> {
@@ -583,6 +595,7 @@ fn _curvenet(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("UsageError", m.py().get_type::<UsageError>())?;
     m.add_function(wrap_pyfunction!(_surface, m)?)?;
     m.add_function(wrap_pyfunction!(_surface_file, m)?)?;
+    m.add_function(wrap_pyfunction!(_plan_files, m)?)?;
     m.add_function(wrap_pyfunction!(_infer_normals, m)?)?;
     m.add_function(wrap_pyfunction!(_harmonic, m)?)?;
     m.add_function(wrap_pyfunction!(_eval, m)?)?;

@@ -8,7 +8,7 @@
 
 use crate::options::{options, SolveArgs};
 use clap::Args;
-use curvenet::pipeline::files::{surface_file, FileReport};
+use curvenet::pipeline::files::{expand_inputs, plan_outputs, surface_file, FileJob as Job, FileReport};
 use curvenet::Error;
 use serde_json::Value;
 use std::collections::{HashMap, HashSet};
@@ -17,9 +17,6 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
-
-/// Network extensions a folder is searched for.
-const NETWORK_EXTENSIONS: [&str; 3] = ["json", "obj", "net"];
 
 #[derive(Args)]
 pub struct BatchArgs {
@@ -48,25 +45,19 @@ pub struct BatchArgs {
     quiet: bool,
 }
 
-/// One network of the batch.
-struct Job {
-    input: PathBuf,
-    output: PathBuf,
-}
-
 pub fn run(a: &BatchArgs) -> Result<(), Error> {
     let start = Instant::now();
     if a.jobs == Some(0) || a.jobs.is_some_and(|j| j > 1024) {
         return Err(Error::usage("`jobs` must be between 1 and 1024"));
     }
     let base = options(&a.solve)?;
-    let inputs = expand(&a.inputs)?;
+    let inputs = expand_inputs(&a.inputs)?;
     if inputs.is_empty() {
         return Err(Error::usage("no network found in the inputs (files, folders of .json/.obj/.net, patterns)"));
     }
     std::fs::create_dir_all(&a.out).map_err(|e| Error::io(&a.out, e))?;
     let report_path = a.out.join("report.jsonl");
-    let jobs = name_outputs(&inputs, &a.out, &a.format);
+    let jobs = plan_outputs(&inputs, &a.out, &a.format);
     // Lines kept from an earlier run (--resume): ok, mesh present, input still asked for.
     let mut kept: Vec<String> = Vec::new();
     let mut done: HashSet<PathBuf> = HashSet::new();
@@ -154,66 +145,6 @@ pub fn run(a: &BatchArgs) -> Result<(), Error> {
         eprintln!("  failed: {input}: {error}");
     }
     Err(Error::input(format!("{} of {total} networks failed (see {})", failed.len(), report_path.display())))
-}
-
-/// The input files: each argument a file, a folder (its network files, sorted) or a glob
-/// pattern; a path that is none of these is kept, to be reported as missing. Duplicates (the
-/// same file twice) once. A folder without networks, or a pattern matching no file, is a usage
-/// error (a typo, not an empty batch).
-fn expand(args: &[String]) -> Result<Vec<PathBuf>, Error> {
-    let mut out: Vec<PathBuf> = Vec::new();
-    let is_network = |p: &Path| {
-        p.is_file()
-            && p.extension()
-                .and_then(|e| e.to_str())
-                .is_some_and(|e| NETWORK_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
-    };
-    for arg in args {
-        let path = Path::new(arg);
-        if path.is_dir() {
-            let mut files: Vec<PathBuf> = std::fs::read_dir(path)
-                .map_err(|e| Error::io(path, e))?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| is_network(p))
-                .collect();
-            if files.is_empty() {
-                return Err(Error::usage(format!("{arg}: the folder holds no .json, .obj or .net file")));
-            }
-            files.sort();
-            out.extend(files);
-        } else if path.exists() || !arg.contains(['*', '?', '[']) {
-            out.push(path.to_path_buf());
-        } else {
-            let paths = glob::glob(arg).map_err(|e| Error::usage(format!("pattern {arg:?}: {e}")))?;
-            let mut files: Vec<PathBuf> = paths.filter_map(|p| p.ok()).filter(|p| p.is_file()).collect();
-            if files.is_empty() {
-                return Err(Error::usage(format!("{arg}: the pattern matches no file")));
-            }
-            files.sort();
-            out.extend(files);
-        }
-    }
-    let mut seen = HashSet::new();
-    out.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
-    Ok(out)
-}
-
-/// `DIR/STEM.FORMAT` per input; a stem met again gets `-2`, `-3`, … (in input order).
-fn name_outputs(inputs: &[PathBuf], dir: &Path, format: &str) -> Vec<Job> {
-    let mut used: HashSet<String> = HashSet::new();
-    inputs
-        .iter()
-        .map(|input| {
-            let stem = input.file_stem().map_or("network".into(), |s| s.to_string_lossy().into_owned());
-            let mut name = stem.clone();
-            let mut k = 1;
-            while !used.insert(name.clone()) {
-                k += 1;
-                name = format!("{stem}-{k}");
-            }
-            Job { input: input.clone(), output: dir.join(format!("{name}.{format}")) }
-        })
-        .collect()
 }
 
 /// A progress bar with counts and ETA on a terminal; one line per network otherwise.

@@ -188,6 +188,32 @@ pub fn angle_weighted_normals(faces: &[[u32; 3]], positions: &[DVec3]) -> Vec<DV
     n.iter().map(|v| v.normalize_or_zero()).collect()
 }
 
+/// The vertices on open borders (an edge of one face only): where [`cotan_mean_curvature`]
+/// is skipped. Face indices beyond `n` are ignored.
+pub fn border_vertices(faces: &[[u32; 3]], n: usize) -> Vec<bool> {
+    let mut edges: Vec<(u32, u32)> =
+        faces.iter().flat_map(|f| (0..3).map(move |k| (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3])))).collect();
+    edges.sort_unstable();
+    let mut border = vec![false; n];
+    let mut i = 0;
+    while i < edges.len() {
+        let mut j = i + 1;
+        while j < edges.len() && edges[j] == edges[i] {
+            j += 1;
+        }
+        if j - i == 1 {
+            let (a, b) = edges[i];
+            for v in [a, b] {
+                if let Some(flag) = border.get_mut(v as usize) {
+                    *flag = true;
+                }
+            }
+        }
+        i = j;
+    }
+    border
+}
+
 /// Signed mean curvature by the cotangent formula: `H = −½ (M⁻¹ Ls V) · n` with `n` the vertex
 /// normal (`+1` on a unit sphere). Vertices in `skip` (open-boundary vertices, where the
 /// one-sided Laplacian is not a curvature) get 0.

@@ -587,31 +587,6 @@ pub struct CurvatureError {
     pub relative_max: f64,
 }
 
-/// The vertices on open borders (an edge of one face only).
-pub fn border_vertices(faces: &[[u32; 3]], n: usize) -> Vec<bool> {
-    let mut edges: Vec<(u32, u32)> =
-        faces.iter().flat_map(|f| (0..3).map(move |k| (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3])))).collect();
-    edges.sort_unstable();
-    let mut border = vec![false; n];
-    let mut i = 0;
-    while i < edges.len() {
-        let mut j = i + 1;
-        while j < edges.len() && edges[j] == edges[i] {
-            j += 1;
-        }
-        if j - i == 1 {
-            let (a, b) = edges[i];
-            for v in [a, b] {
-                if let Some(flag) = border.get_mut(v as usize) {
-                    *flag = true;
-                }
-            }
-        }
-        i = j;
-    }
-    border
-}
-
 /// [`CurvatureError`] of the mesh over the vertices `free` against `truth`; `None` when no
 /// vertex qualifies or the truth is flat (no scale).
 pub fn curvature_error(
@@ -620,7 +595,7 @@ pub fn curvature_error(
     free: &[usize],
     truth: &Truth,
 ) -> Option<CurvatureError> {
-    let border = border_vertices(faces, positions.len());
+    let border = crate::operators::border_vertices(faces, positions.len());
     let h = crate::operators::cotan_mean_curvature(faces, positions, &border);
     let pairs: Vec<(f64, f64)> = free
         .iter()

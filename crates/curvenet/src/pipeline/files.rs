@@ -3,10 +3,23 @@
 //! Dask cluster), so that both report the same fields.
 
 use super::{surface, Options, Stats};
-use crate::error::Error;
+use crate::error::{Error, Result};
 use serde::Serialize;
-use std::path::Path;
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+/// Network extensions a folder is searched for ([`expand_inputs`]).
+pub const NETWORK_EXTENSIONS: [&str; 3] = ["json", "obj", "net"];
+
+/// One network file of a batch and the mesh file it becomes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FileJob {
+    /// The network file.
+    pub input: PathBuf,
+    /// The mesh file.
+    pub output: PathBuf,
+}
 
 /// What became of one network file: a line of `curvenet batch`'s `report.jsonl`.
 #[derive(Clone, Debug, Serialize)]
@@ -64,7 +77,7 @@ impl FileReport {
 /// reported as an internal error — is the report's.
 pub fn surface_file(input: &Path, output: &Path, options: &Options) -> FileReport {
     let clock = Instant::now();
-    let run = || -> Result<FileReport, Error> {
+    let run = || -> Result<FileReport> {
         crate::io::check_mesh_path(output)?;
         let network = crate::io::read_network(input)?;
         let mut opts = options.clone();
@@ -95,4 +108,65 @@ pub fn surface_file(input: &Path, output: &Path, options: &Options) -> FileRepor
             clock.elapsed().as_secs_f64(),
         ),
     }
+}
+
+/// The input files: each argument a file, a folder (its network files, sorted) or a glob
+/// pattern; a path that is none of these is kept, to be reported as missing. Duplicates (the
+/// same file twice) once. A folder without networks, or a pattern matching no file, is a usage
+/// error (a typo, not an empty batch).
+pub fn expand_inputs(args: &[String]) -> Result<Vec<PathBuf>> {
+    let mut out: Vec<PathBuf> = Vec::new();
+    let is_network = |p: &Path| {
+        p.is_file()
+            && p.extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| NETWORK_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
+    };
+    for arg in args {
+        let path = Path::new(arg);
+        if path.is_dir() {
+            let mut files: Vec<PathBuf> = std::fs::read_dir(path)
+                .map_err(|e| Error::io(path, e))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| is_network(p))
+                .collect();
+            if files.is_empty() {
+                return Err(Error::usage(format!("{arg}: the folder holds no .json, .obj or .net file")));
+            }
+            files.sort();
+            out.extend(files);
+        } else if path.exists() || !arg.contains(['*', '?', '[']) {
+            out.push(path.to_path_buf());
+        } else {
+            let paths = glob::glob(arg).map_err(|e| Error::usage(format!("pattern {arg:?}: {e}")))?;
+            let mut files: Vec<PathBuf> = paths.filter_map(|p| p.ok()).filter(|p| p.is_file()).collect();
+            if files.is_empty() {
+                return Err(Error::usage(format!("{arg}: the pattern matches no file")));
+            }
+            files.sort();
+            out.extend(files);
+        }
+    }
+    let mut seen = HashSet::new();
+    out.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
+    Ok(out)
+}
+
+/// One job per input: the input and its mesh `DIR/STEM.FORMAT`; a stem met again gets `-2`,
+/// `-3`, … (in input order).
+pub fn plan_outputs(inputs: &[PathBuf], dir: &Path, format: &str) -> Vec<FileJob> {
+    let mut used: HashSet<String> = HashSet::new();
+    inputs
+        .iter()
+        .map(|input| {
+            let stem = input.file_stem().map_or("network".into(), |s| s.to_string_lossy().into_owned());
+            let mut name = stem.clone();
+            let mut k = 1;
+            while !used.insert(name.clone()) {
+                k += 1;
+                name = format!("{stem}-{k}");
+            }
+            FileJob { input: input.clone(), output: dir.join(format!("{name}.{format}")) }
+        })
+        .collect()
 }

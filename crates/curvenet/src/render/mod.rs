@@ -170,7 +170,7 @@ impl Scene {
             return Err(Error::input(format!("vertex {i} of the mesh is not finite")));
         }
         check_faces(mesh.faces, n)?;
-        let boundary = boundary_vertices(n, mesh.faces);
+        let boundary = crate::operators::border_vertices(mesh.faces, n);
         let (normals, mean_curvature) = match (mesh.normals, mesh.mean_curvature) {
             (Some(nr), Some(h)) if nr.len() == n && h.len() == n => (nr.to_vec(), h.to_vec()),
             (nr, _) => {
@@ -291,26 +291,6 @@ fn check_faces(faces: &[[u32; 3]], n: usize) -> Result<()> {
         Some((k, f)) => Err(Error::input(format!("face {k} {f:?} refers to a vertex beyond the {n} of the mesh"))),
         None => Ok(()),
     }
-}
-
-fn boundary_vertices(n: usize, faces: &[[u32; 3]]) -> Vec<bool> {
-    let mut edges: Vec<(u32, u32)> =
-        faces.iter().flat_map(|f| (0..3).map(move |k| (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3])))).collect();
-    edges.sort_unstable();
-    let mut flag = vec![false; n];
-    let mut i = 0;
-    while i < edges.len() {
-        let mut j = i + 1;
-        while j < edges.len() && edges[j] == edges[i] {
-            j += 1;
-        }
-        if j - i == 1 {
-            flag[edges[i].0 as usize] = true;
-            flag[edges[i].1 as usize] = true;
-        }
-        i = j;
-    }
-    flag
 }
 
 fn percentile(mut values: Vec<f64>, q: f64) -> f64 {
