@@ -28,6 +28,9 @@ pub struct Operators {
     pub ls: Csc,
     /// Mixed Voronoi areas (the diagonal of `M`), `#V`.
     pub mass: Vec<f64>,
+    /// Barycentric areas (a third of each incident triangle), `#V`: the area the mean-curvature
+    /// guide's sum covers (\[CG\] eq. 1; [`crate::methods::GuideArea::Barycentric`]).
+    pub barycentric: Vec<f64>,
 }
 
 /// Corner cotangents and mixed Voronoi areas of one triangle given its corners (2D or 3D).
@@ -105,9 +108,10 @@ pub fn cotan_operators(mesh: &Mesh, metric: Metric, positions: &[DVec3]) -> Oper
     };
     let lift = |q: DVec2| DVec3::new(q.x, q.y, 0.0);
     let nnz = pattern.csc.values.len();
-    // One pass over the faces: the off-diagonal entries (values[..nnz]) and the areas
-    // (values[nnz..]); the diagonal follows from the columns' sums.
-    let mut values = accumulate(nnz + n, mesh.faces.len(), |fi, acc: &mut [f64]| {
+    // One pass over the faces: the off-diagonal entries (values[..nnz]), the mixed areas
+    // (values[nnz..nnz + n]) and the barycentric areas (values[nnz + n..]); the diagonal follows
+    // from the columns' sums.
+    let mut values = accumulate(nnz + 2 * n, mesh.faces.len(), |fi, acc: &mut [f64]| {
         let f = mesh.faces[fi];
         let p = match metric {
             Metric::Planar => {
@@ -117,6 +121,7 @@ pub fn cotan_operators(mesh: &Mesh, metric: Metric, positions: &[DVec3]) -> Oper
             Metric::Surface => [positions[f[0] as usize], positions[f[1] as usize], positions[f[2] as usize]],
         };
         let (cot, share) = corner_terms(p);
+        let third = (p[1] - p[0]).cross(p[2] - p[0]).length() / 6.0;
         let slots = &pattern.slots[fi];
         for k in 0..3 {
             // The edge opposite corner k gets ½ cot(angle k).
@@ -124,8 +129,10 @@ pub fn cotan_operators(mesh: &Mesh, metric: Metric, positions: &[DVec3]) -> Oper
             acc[slots[k][0] as usize] += w;
             acc[slots[k][1] as usize] += w;
             acc[nnz + f[k] as usize] += share[k];
+            acc[nnz + n + f[k] as usize] += third;
         }
     });
+    let barycentric = values.split_off(nnz + n);
     let mass = values.split_off(nnz);
     // (Ls)_jj = −Σ_{i≠j} (Ls)_ij: the diagonal entries are still zero, so minus the column sum.
     let diag: Vec<f64> = (0..n)
@@ -138,7 +145,7 @@ pub fn cotan_operators(mesh: &Mesh, metric: Metric, positions: &[DVec3]) -> Oper
     }
     let ls =
         Csc { nrows: n, ncols: n, col_ptr: pattern.csc.col_ptr.clone(), row_idx: pattern.csc.row_idx.clone(), values };
-    Operators { ls, mass }
+    Operators { ls, mass, barycentric }
 }
 
 /// Mixed Voronoi areas of the mesh at `positions` (3D).

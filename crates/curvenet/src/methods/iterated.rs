@@ -25,7 +25,7 @@
 //! updates grow (divergence).
 
 use super::normal_control::{fit_weights, seam_normal_targets, seam_targets};
-use super::{check_finite, factor_on, known_rows, scatter, Energy, MethodResult};
+use super::{check_finite, factor_on, known_rows, scatter, Energy, GuideArea, MethodResult};
 use crate::error::{Error, Result};
 use crate::geom::mesh::Mesh;
 use crate::geom::DVec3;
@@ -87,6 +87,8 @@ pub struct IterationParams {
     pub spacing: f64,
     /// Energy weighting of the fit.
     pub energy: Energy,
+    /// The area dividing the guide (eq. 1); on the current surface `Surface` is `Mass`.
+    pub guide_area: GuideArea,
     /// Soft-constraint weight per curve vertex (scaled as in normal-control), `None` for hard.
     pub soft_weight: Option<f64>,
 }
@@ -336,7 +338,11 @@ fn inner_steps(
             *x = if u == DVec3::ZERO || !u.is_finite() { prior[k] } else { u };
         }
         // 3. Guide on the current surface.
-        h = blended_mean_curvature(&mesh.faces, &v, &normals, &step.ops.mass, &mesh.on_boundary);
+        let area = match params.guide_area {
+            GuideArea::Barycentric => &step.ops.barycentric,
+            GuideArea::Mass | GuideArea::Surface => &step.ops.mass,
+        };
+        h = blended_mean_curvature(&mesh.faces, &v, &normals, area, &mesh.on_boundary);
         if let Some(i) = h.iter().position(|x| !x.is_finite()) {
             return Err(Error::numerical(format!("iterated guide is not finite at vertex {i}")).vertex(i));
         }

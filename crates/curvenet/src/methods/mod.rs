@@ -135,14 +135,25 @@ impl Energy {
     }
 }
 
-/// Which Voronoi area `A` divides the sum in the mean-curvature guide (\[CG\] eq. 1).
+/// Which area `A` divides the sum in the mean-curvature guide (\[CG\] eq. 1).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum GuideArea {
+    /// The barycentric area of the fit's metric (a third of the one-ring): the area eq. 1's sum
+    /// covers. Eq. 1 sums `n × dx` around the one-ring, `≈ 2H` times the enclosed area, which is
+    /// three barycentric areas on any ring; the mixed Voronoi area of [`GuideArea::Mass`] equals
+    /// it only on regular rings. At the valence-5 and -7 vertices where a patch's lattice meets
+    /// its border band the difference is 10–15 %, and the fit turns it into bumps (sphere, 20k
+    /// vertices, points exactly on the sphere: guide error 0.00 % instead of 12.7 % at the 99th
+    /// percentile; docs/accuracy.md, "Fairness"). The fit's target stays `−2 M_v H_v n_v`, with
+    /// the Laplacian's own area; both areas come from the same metric, so the planar bias
+    /// cancellation of [`GuideArea::Mass`] holds too.
+    #[default]
+    Barycentric,
     /// The area `M` of the Laplacian the fit uses. With the planar metric, `L = M⁻¹Ls` of the
     /// true surface exceeds `−2HN` by the local area ratio of the projection; dividing `h` by
     /// the same planar area scales the target by the same ratio, so the bias cancels to first
-    /// order (sphere at 20k vertices: mean error 0.0011 instead of 0.0084).
-    #[default]
+    /// order (sphere at 20k vertices: mean error 0.0011 instead of 0.0084). The `fast` preset's
+    /// choice (as before issue 18).
     Mass,
     /// The Voronoi area of `v*` on the propagated surface `V*`, as \[CG\] §3.4 states it.
     Surface,
@@ -150,11 +161,12 @@ pub enum GuideArea {
 
 impl GuideArea {
     /// Every choice.
-    pub const ALL: [GuideArea; 2] = [GuideArea::Mass, GuideArea::Surface];
+    pub const ALL: [GuideArea; 3] = [GuideArea::Barycentric, GuideArea::Mass, GuideArea::Surface];
 
     /// The name used in options and files.
     pub fn name(self) -> &'static str {
         match self {
+            GuideArea::Barycentric => "barycentric",
             GuideArea::Mass => "mass",
             GuideArea::Surface => "surface",
         }

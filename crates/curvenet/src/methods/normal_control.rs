@@ -7,8 +7,10 @@
 //!    symmetric form `(Ls M⁻¹ Ls)_ff X_f = −(Ls M⁻¹ Ls)_fc X_c`, one factorisation for the six
 //!    columns; `N*` normalised.
 //! 2. Guide: `H(v) = h(v) · n*(v)` with `h` from eq. 1 on `(V*, N*)` (signed, docs/design.md §1),
-//!    divided by the Laplacian's own Voronoi area `M` ([`GuideArea::Mass`], default) or by the
-//!    area of `v*` on `V*` as the paper states it ([`GuideArea::Surface`]).
+//!    divided by the barycentric area of the Laplacian's metric ([`GuideArea::Barycentric`],
+//!    default: the area the sum covers), by the Laplacian's own Voronoi area `M`
+//!    ([`GuideArea::Mass`]) or by the area of `v*` on `V*` as the paper states it
+//!    ([`GuideArea::Surface`]).
 //! 3. Fit: `min Σ_v w_v ‖(Ls V)_v − b_v‖²`, `b_v = −2 A_v H_v n*_v` (that is `L V = −2 H N*`),
 //!    with `w_v = 1/A_v` (area-weighted, docs/design.md §1) or `1/A_v²` (\[CG\] eq. 2 as written). Rows
 //!    of open-boundary vertices are left out (their one-sided Laplacian is not a curvature).
@@ -38,7 +40,7 @@ use faer::Mat;
 pub struct NormalControlOptions {
     /// `energy`: weighting of the energy's terms. Default [`Energy::Area`].
     pub energy: Energy,
-    /// `guide_area`: the area dividing eq. 1. Default [`GuideArea::Mass`].
+    /// `guide_area`: the area dividing eq. 1. Default [`GuideArea::Barycentric`].
     pub guide_area: GuideArea,
     /// `guide_updates`: how many times the guide is re-estimated on the fitted surface and the
     /// fit repeated with the same factorisation (0: the paper). Default
@@ -55,7 +57,7 @@ impl Default for NormalControlOptions {
     fn default() -> Self {
         NormalControlOptions {
             energy: Energy::Area,
-            guide_area: GuideArea::Mass,
+            guide_area: GuideArea::Barycentric,
             guide_updates: Self::DEFAULT_GUIDE_UPDATES,
         }
     }
@@ -280,6 +282,7 @@ fn normal_control_cached(
         let clock = Instant::now();
         let surface_area;
         let area = match params.options.guide_area {
+            GuideArea::Barycentric => &ops.barycentric,
             GuideArea::Mass => &ops.mass,
             GuideArea::Surface => {
                 surface_area = mixed_areas(&mesh.faces, &guide_positions);

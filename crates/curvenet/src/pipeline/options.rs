@@ -176,6 +176,7 @@ impl Options {
             Preset::Fast => Options {
                 mesh: MeshOptions { patching: Patching::Planar, ..default.mesh },
                 iterate: IterationOptions { iterations: 0, ..default.iterate },
+                normal_control: NormalControlOptions { guide_area: GuideArea::Mass, ..default.normal_control },
                 ..default
             },
             Preset::Paper => Options {
@@ -484,14 +485,15 @@ pub const OPTIONS: &[OptionSpec] = &[
     },
     OptionSpec {
         name: "guide_area",
-        value_name: "mass|surface",
-        choices: &["mass", "surface"],
-        help: "The area dividing the mean-curvature guide ([CG] eq. 1): the Laplacian's own Voronoi area \
-               (consistent with the fit) or the area on the propagated surface V* (the paper's wording).",
+        value_name: "barycentric|mass|surface",
+        choices: &["barycentric", "mass", "surface"],
+        help: "The area dividing the mean-curvature guide ([CG] eq. 1): the barycentric area of the fit's \
+               metric (the area the sum covers: fair curvature at irregular vertices), the Laplacian's own \
+               Voronoi area (the fast preset's) or the area on the propagated surface V* (the paper's wording).",
         unset: None,
         aliases: &[],
         set: |o, v| {
-            o.normal_control.guide_area = choice(&GuideArea::ALL, GuideArea::name, v, "mass or surface")?;
+            o.normal_control.guide_area = choice(&GuideArea::ALL, GuideArea::name, v, "barycentric, mass or surface")?;
             Ok(())
         },
         get: |o| Some(o.normal_control.guide_area.name().to_string()),

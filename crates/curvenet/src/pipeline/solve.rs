@@ -185,6 +185,7 @@ fn iterate(
         patch_size: (area / prepared.patches.max(1) as f64).sqrt(),
         spacing: d,
         energy: options.normal_control.energy,
+        guide_area: options.normal_control.guide_area,
         soft_weight: options.soft.map(|s| soft_weight(options, s, prepared.input_spacing, mean_area, d)),
     };
     let iterated = state.iterated.get_or_insert_with(|| Iterated::new(params));

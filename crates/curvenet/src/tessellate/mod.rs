@@ -23,6 +23,8 @@
 //!   and unrolled onto a trapezoidal strip.
 //! - `flatten.rs` and [`conformal`], conformal patching: each disk patch of a coarse first
 //!   solution flattened by least squares conformal maps, and triangulated in its flattening.
+//! - `relax.rs`: the triangulation smoothed in its domain (balanced one-rings where the band
+//!   meets the lattice, and across a tube's seam).
 //! - `merge.rs`: the patches merged into one mesh, the curve vertices first.
 
 pub mod conformal;
@@ -31,6 +33,7 @@ mod flatten;
 mod lattice;
 mod merge;
 mod planar;
+mod relax;
 mod triangulate;
 mod tube;
 
@@ -56,7 +59,7 @@ pub const VERTICES_PER_AREA: f64 = 1.155;
 
 /// A vertex of a patch triangulation: a curve vertex (global id) or a new free vertex of the
 /// patch (local id).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 enum VRef {
     Curve(u32),
     New(u32),

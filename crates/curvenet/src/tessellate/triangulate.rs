@@ -3,6 +3,7 @@
 //! between the border and the lattice, and the lift of the result to a [`PatchMesh`].
 
 use super::lattice::{hex_lattice, lattice_triangles, Lattice, LatticeTriangles};
+use super::relax::{relax, Twin};
 use super::{PatchMesh, VRef, MAX_AREA_FACTOR, MIN_ANGLE_DEG};
 use crate::error::{Error, Result};
 use crate::geom::{polygon_signed_area, DVec2, DVec3};
@@ -53,6 +54,20 @@ pub(super) fn triangulate(pts: Vec<DVec2>, map: Vec<VRef>, d: f64, what: &dyn Fn
     let mut positions: Vec<DVec2> = pts.clone();
     positions.extend_from_slice(&lattice.points);
     positions.extend(refined_points);
+    // Balance the one-rings where the band meets the lattice; a seam vertex of a tube (on both
+    // edges of its strip) moves as one vertex with the triangles of both sides.
+    let mut first_at = std::collections::HashMap::new();
+    let mut twins = Vec::new();
+    for (i, r) in map.iter().enumerate() {
+        if let VRef::New(_) = r {
+            if let Some(&a) = first_at.get(r) {
+                twins.push(Twin { a, b: i, offset: positions[i] - positions[a] });
+            } else {
+                first_at.insert(*r, i);
+            }
+        }
+    }
+    relax(&tris, &mut positions, n, &twins);
     let map = number_new_vertices(map, n, m, refined, &tris);
     Ok((tris, positions, map))
 }

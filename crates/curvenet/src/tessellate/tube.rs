@@ -86,7 +86,9 @@ pub(super) fn tessellate_tube(
     };
     let lift = |q: DVec2| {
         let v = (q.y / h).clamp(0.0, 1.0);
-        let u = (q.x / la.max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        // Not clamped: the smoothing (`relax`) may move a seam vertex past the strip's edge, and
+        // `at` wraps around the loop.
+        let u = q.x / la.max(f64::MIN_POSITIVE);
         at(&a, &xa, u * la).lerp(at(&b, &xb, lb - u * lb), v)
     };
     lift_patch(tris, &pos2, &map, lift, &what)

@@ -35,7 +35,13 @@ fn presets_are_defined_once() {
     assert_eq!(paper.cauchy.ghost_updates, 0);
     let fast = Options::fast();
     assert_eq!((fast.mesh.patching, fast.iterate.iterations), (Patching::Planar, 0));
-    assert_eq!(fast.normal_control, Options::default().normal_control);
+    // fast keeps the guide of the single pass it always was (issue 18 changed the default's).
+    assert_eq!(fast.normal_control.guide_area, GuideArea::Mass);
+    assert_eq!(Options::default().normal_control.guide_area, GuideArea::Barycentric);
+    assert_eq!(
+        fast.normal_control,
+        NormalControlOptions { guide_area: GuideArea::Mass, ..Options::default().normal_control }
+    );
     assert_eq!(Preset::from_name("paper").unwrap(), Preset::Paper);
     assert!(matches!(Preset::from_name("quick"), Err(Error::Usage { .. })));
 }

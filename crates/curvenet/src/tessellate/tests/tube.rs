@@ -20,7 +20,7 @@ fn rim(z: f64) -> Curve {
 
 /// Two facing circles bound a tube: an annulus (Euler characteristic 0) whose faces all face
 /// away from the axis; the seam from (1, 0, 0) to (1, 0, 1) gets round(h/d) − 1 = 9 new
-/// vertices, evenly spaced.
+/// vertices, evenly spaced before the smoothing (`relax`), which moves them less than d/4.
 #[test]
 fn two_circles_bound_an_outward_annulus_with_a_straight_seam() {
     let d = 0.1;
@@ -35,6 +35,6 @@ fn two_circles_bound_an_outward_annulus_with_a_straight_seam() {
     }
     for k in 1..10 {
         let p = mesh.positions[mesh.num_curve + k - 1];
-        assert!(p.distance(DVec3::new(1.0, 0.0, k as f64 / 10.0)) < 1e-9, "seam vertex {k} at {p:?}");
+        assert!(p.distance(DVec3::new(1.0, 0.0, k as f64 / 10.0)) < 0.25 * d, "seam vertex {k} at {p:?}");
     }
 }
