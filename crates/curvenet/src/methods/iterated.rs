@@ -187,6 +187,11 @@ impl Step<'_> {
 }
 
 impl Iterated {
+    /// Whether the last iteration's factorisations are kept.
+    pub fn is_factored(&self) -> bool {
+        self.systems.is_some()
+    }
+
     /// The iterations with `params`, nothing factorised yet.
     pub fn new(params: IterationParams) -> Self {
         Iterated { params, systems: None }

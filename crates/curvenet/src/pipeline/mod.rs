@@ -4,7 +4,8 @@
 //! 1. [`infer`]: normals for the curves that come without them (then the paper's pipeline
 //!    runs as for given normals).
 //! 2. [`prepare`]: validate, find nodes, fit splines, trace the cycles, pick the spacing,
-//!    resample, tessellate (planar or conformal patching).
+//!    resample, tessellate (planar or conformal patching: `levels.rs`, the coarse levels the
+//!    default solves and iterates on before the fine one).
 //! 3. [`solve`]: the method on the patches' domain operators, then normal-control's 3D
 //!    iterations.
 //! 4. [`stats`]: the surface, its statistics and timings.
@@ -15,6 +16,7 @@
 pub mod budget;
 pub mod files;
 pub mod infer;
+mod levels;
 pub mod options;
 pub mod prepare;
 pub mod solve;

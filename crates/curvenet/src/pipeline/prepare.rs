@@ -9,13 +9,11 @@ use crate::curves::CurveSpline;
 use crate::error::{Error, Result, Warning};
 use crate::geom::mesh::Mesh;
 use crate::geom::DVec3;
-use crate::methods::normal_control::{normal_control, NormalControlOptions, NormalControlParams};
 use crate::methods::Method;
 use crate::network::Network;
-use crate::operators::{cotan_operators, Metric};
 use crate::solve::timing::{seconds_since, timed, Instant};
 use crate::solve::SolveTimings;
-use crate::tessellate::{flatten_patches, tessellate, tessellate_conformal, VERTICES_PER_AREA};
+use crate::tessellate::{tessellate, VERTICES_PER_AREA};
 use crate::topology::creases::{check_sides, patch_normals, segment_sides, Seams};
 use crate::topology::cycles::{find_patches_open, half_edge_samples};
 use crate::topology::resample::{resample_network, Resampled};
@@ -60,6 +58,9 @@ pub(crate) struct Prepared {
     pub timings: Timings,
     /// Seconds of the conformal first solve.
     pub solve_timings: SolveTimings,
+    /// The mesh's free vertices start on the coarse level's iterated surface
+    /// ([`crate::tessellate::transfer_positions`]): the fine level's first solve is not needed.
+    pub transferred: bool,
 }
 
 /// The network's topology: the validated network, its nodes, segments, splines and patches.
@@ -96,7 +97,7 @@ pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'
     timings.resample += seconds_since(clock);
 
     let mut st = SolveTimings::default();
-    let (mesh, seams, d, layout) = match options.mesh.patching {
+    let (mesh, seams, d, layout, transferred) = match options.mesh.patching {
         Patching::Planar => {
             let (res, mesh) = planar_stage(&topo, d, &mut timings)?;
             let seams = timed(&mut timings.tessellate, || topo.seams(&res, &mesh));
@@ -105,11 +106,11 @@ pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'
             progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
             let detail = format!("{} vertices, {} faces", mesh.num_vertices(), mesh.faces.len());
             progress("tessellate", timings.tessellate, &detail);
-            (mesh, seams, d, layout)
+            (mesh, seams, d, layout, false)
         }
         Patching::Conformal => {
             let spacing = options.mesh.spacing.is_none().then_some((&size, target));
-            conformal_stage(&mut topo, d, spacing, &mut timings, &mut st, progress)?
+            super::levels::conformal_stage(&mut topo, options, d, spacing, &mut timings, &mut st, progress)?
         }
     };
     timings.total = seconds_since(start);
@@ -129,6 +130,7 @@ pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'
         warnings: topo.warnings,
         timings,
         solve_timings: st,
+        transferred,
     })
 }
 
@@ -230,79 +232,14 @@ pub(super) fn planar_stage(topo: &Topology, d: f64, timings: &mut Timings) -> Re
 }
 
 /// A tessellation stage's result: the mesh, its cut along the creases, the spacing, the
-/// segments' layout.
-type Stage = (Mesh, Option<Seams>, f64, Vec<[usize; 4]>);
-
-/// Better patching (\[CG\] §6): a coarse first solution (twice the spacing) on planar
-/// projections, then each patch re-tessellated in a conformal flattening of it. `size` (with
-/// the target vertex count), when the spacing was not given: the spacing follows the flattened
-/// domains' area. Returns the mesh, its spacing and its segments' layout.
-fn conformal_stage(
-    topo: &mut Topology,
-    d: f64,
-    size: Option<(&SizeModel, usize)>,
-    timings: &mut Timings,
-    st: &mut SolveTimings,
-    progress: Progress<'_>,
-) -> Result<Stage> {
-    let (coarse_res, coarse) = match planar_stage(topo, 2.0 * d, timings) {
-        Ok(stage) => stage,
-        // Twice the spacing is too coarse for this network (its patches overlap, e.g. the
-        // torus at 1000 vertices): the first solution at the spacing itself.
-        Err(Error::Topology { .. }) => planar_stage(topo, d, timings)?,
-        Err(e) => return Err(e),
-    };
-    topo.warnings.extend(fold_warnings(&coarse));
-    // The first solution only shapes the flattening: normal-control whatever the method (on
-    // the mesh cut open along the creases, when there are any).
-    let seams = topo.seams(&coarse_res, &coarse);
-    let solved = seams.as_ref().map_or(&coarse, |s| &s.mesh);
-    let ops = cotan_operators(solved, Metric::Planar, &solved.positions);
-    let params = NormalControlParams {
-        options: NormalControlOptions { guide_updates: 1, ..Default::default() },
-        ..Default::default()
-    };
-    let first = normal_control(solved, &ops, &params, st)?;
-    let positions = match &seams {
-        Some(s) => s.merge(&first.positions),
-        None => first.positions,
-    };
-    let coarse = Mesh { positions, ..coarse };
-    let flat = timed(&mut timings.tessellate, || flatten_patches(&topo.patches, &coarse_res, &coarse));
-    let d = match size {
-        Some((size, target)) => {
-            // The vertex count follows the flattened domains' area, not the projections'.
-            let total: f64 = flat.iter().zip(&size.patch_areas).map(|(f, a)| f.as_ref().map_or(*a, |f| f.area)).sum();
-            SizeModel { area: VERTICES_PER_AREA * total, ..size.clone() }.spacing(target)
-        }
-        None => d,
-    };
-    let res = timed(&mut timings.resample, || resample_network(&topo.g, &topo.splines, d));
-    progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
-    let (mesh, kept) = timed(&mut timings.tessellate, || -> Result<_> {
-        let (mesh, kept) = tessellate_conformal(&topo.g, &res, &topo.patches, d, &coarse_res, &flat)?;
-        manifold(&mesh, &topo.g, &res)?;
-        Ok((mesh, kept))
-    })?;
-    let new: Vec<Warning> = fold_warnings(&mesh).into_iter().filter(|w| !topo.warnings.contains(w)).collect();
-    topo.warnings.extend(new);
-    for p in kept {
-        topo.warnings.push(
-            Warning::new(format!("patch {p}: its conformal flattening folds over; it keeps the planar projection"))
-                .patch(p),
-        );
-    }
-    let seams = timed(&mut timings.tessellate, || topo.seams(&res, &mesh));
-    let detail = format!("conformal: {} vertices, {} faces", mesh.num_vertices(), mesh.faces.len());
-    progress("tessellate", timings.tessellate, &detail);
-    Ok((mesh, seams, d, segment_layout(&topo.g, &res)))
-}
+/// segments' layout, whether the free vertices start on the coarse level's iterated surface.
+pub(super) type Stage = (Mesh, Option<Seams>, f64, Vec<[usize; 4]>, bool);
 
 /// Checks that the tessellated patches join into an edge-manifold, consistently oriented mesh
 /// ([`crate::geom::mesh::bad_edge`]); an edge in more than two faces means that two patches overlap
 /// (two curves come closer than the spacing between nodes, or a patch folds onto its
 /// neighbour). The error names the patches, the curves and the place.
-fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
+pub(super) fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
     let Some(([a, b], faces)) = crate::geom::mesh::bad_edge(&mesh.faces) else { return Ok(()) };
     let mut patches: Vec<u32> = faces.iter().map(|&f| mesh.face_patch[f]).collect();
     patches.sort_unstable();
@@ -345,11 +282,11 @@ fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
 #[derive(Clone)]
 pub(super) struct SizeModel {
     /// `c A`: the vertices-per-area constant times the domains' total area.
-    area: f64,
+    pub(super) area: f64,
     /// `ℓ`: the segments' total arc length.
-    length: f64,
+    pub(super) length: f64,
     /// Area of each patch's domain (projection or strip).
-    patch_areas: Vec<f64>,
+    pub(super) patch_areas: Vec<f64>,
 }
 
 impl SizeModel {
@@ -389,7 +326,7 @@ impl SizeModel {
 
 /// One warning per patch of `mesh` whose planar projection folds over (triangulated in a
 /// fallback domain, see [`crate::tessellate`]).
-fn fold_warnings(mesh: &Mesh) -> Vec<Warning> {
+pub(super) fn fold_warnings(mesh: &Mesh) -> Vec<Warning> {
     mesh.fold_fallback
         .iter()
         .map(|p| {

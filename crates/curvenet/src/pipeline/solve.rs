@@ -9,7 +9,7 @@ use crate::error::{Error, Result, Warning};
 use crate::geom::mesh::Mesh;
 use crate::methods::andrews2011::Andrews2011;
 use crate::methods::eg2016::{ShortPaper, ShortPaperParams};
-use crate::methods::iterated::{Iterated, IterationParams, Stop};
+use crate::methods::iterated::{Iterated, IterationOptions, IterationParams, Stop};
 use crate::methods::method4::Method4;
 use crate::methods::normal_control::{NormalControl, NormalControlParams};
 use crate::methods::polyharmonic::Polyharmonic;
@@ -26,9 +26,10 @@ pub(crate) struct Kept {
 }
 
 impl Kept {
-    /// Whether a factorisation is kept.
+    /// Whether a factorisation is kept (the method's, or the 3D iterations' when the first
+    /// solve started on the coarse level's surface).
     pub(crate) fn is_factored(&self) -> bool {
-        self.method.is_factored()
+        self.method.is_factored() || self.iterated.as_ref().is_some_and(Iterated::is_factored)
     }
 
     /// The network's curves moved (see [`SurfacingMethod::set_curves`]).
@@ -118,21 +119,48 @@ pub(crate) fn solve_prepared(
         Some(k) => k,
         None => &mut one_shot,
     };
+    let fresh = slot.is_none();
     let state = slot.get_or_insert_with(|| Kept { method: make_method(options, &prepared, &ops), iterated: None });
-    let mut result = state.method.solve(mesh, &ops, &mut st)?;
-    drop(ops);
     let iterating = options.iterate.iterations > 0 && options.method == Method::NormalControl;
-    if iterating {
-        progress("first solve", st.operators + st.factor + st.solve, options.method.name());
-    }
-    if !keep {
-        // Lower peak memory: the iterations factorise their own systems.
-        state.method.release();
+    // The coarse level iterated and the free vertices start on its surface: the fine level's
+    // first solve is left out (not after the curves moved: the start is the old surface's).
+    // A start whose fine iteration degenerates or diverges (a tube's seam at very few vertices)
+    // falls back to the fine level's own first solve.
+    let mut from_coarse = None;
+    let mut ops = Some(ops);
+    if iterating && fresh && prepared.transferred {
+        ops = None;
+        let start = MethodResult { positions: mesh.positions.clone(), propagated_normals: None, guide_curvature: None };
+        let (r, report) = iterate(options, &prepared, start, state, &mut st, progress, true)?;
+        if matches!(report.stop, Stop::Converged | Stop::MaxIterations) {
+            from_coarse = Some((r, report));
+        } else {
+            state.iterated = None;
+        }
     }
     let mut iteration_report: (Vec<f64>, Option<Stop>) = (Vec::new(), None);
+    let mut result;
+    if let Some((r, report)) = from_coarse {
+        result = r;
+        iteration_report = (report.updates, Some(report.stop));
+    } else {
+        let ops = match ops {
+            Some(ops) => ops,
+            None => timed(&mut st.operators, || domain_operators(mesh))?,
+        };
+        result = state.method.solve(mesh, &ops, &mut st)?;
+        drop(ops);
+        if iterating {
+            progress("first solve", st.operators + st.factor + st.solve, options.method.name());
+        }
+        if !keep {
+            // Lower peak memory: the iterations factorise their own systems.
+            state.method.release();
+        }
+    }
     // The baselines keep the weights of their patching's domains, as in [CG] Table 1.
-    if iterating {
-        let (r, report) = iterate(options, &prepared, result, state, &mut st, progress)?;
+    if iterating && iteration_report.1.is_none() {
+        let (r, report) = iterate(options, &prepared, result, state, &mut st, progress, false)?;
         result = r;
         let stopped = |why: &str| {
             Warning::new(format!(
@@ -168,6 +196,7 @@ fn iterate(
     state: &mut Kept,
     st: &mut crate::solve::SolveTimings,
     progress: Progress<'_>,
+    from_coarse: bool,
 ) -> Result<(MethodResult, crate::methods::iterated::IterationReport)> {
     let mesh = prepared.seams.as_ref().map_or(&prepared.mesh, |s| &s.mesh);
     let d = prepared.spacing;
@@ -180,8 +209,9 @@ fn iterate(
         })
         .sum();
     let mean_area = area / mesh.num_vertices() as f64;
+    let fine_iterations = if from_coarse { super::levels::FINE_ITERATIONS } else { options.iterate.iterations };
     let params = IterationParams {
-        options: options.iterate,
+        options: IterationOptions { iterations: fine_iterations, ..options.iterate },
         patch_size: (area / prepared.patches.max(1) as f64).sqrt(),
         spacing: d,
         energy: options.normal_control.energy,

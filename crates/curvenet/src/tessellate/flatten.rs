@@ -21,6 +21,13 @@ pub struct PatchFlattening {
     pub area: f64,
 }
 
+impl PatchFlattening {
+    /// The flattened position of the coarse vertex `v` (`None` when it is not in the patch).
+    pub fn uv_of(&self, v: u32) -> Option<DVec2> {
+        self.uv.get(&v).copied()
+    }
+}
+
 /// Flattens every disk patch of `coarse` (a solved mesh over the curve vertices `coarse_res`)
 /// by LSCM ([`crate::tessellate::conformal::lscm`]). `None` for tubes and for patches whose flattening
 /// fails or folds over (they keep their planar projection).

@@ -25,6 +25,8 @@
 //!   solution flattened by least squares conformal maps, and triangulated in its flattening.
 //! - `relax.rs`: the triangulation smoothed in its domain (balanced one-rings where the band
 //!   meets the lattice, and across a tube's seam).
+//! - `transfer.rs`: positions for a fine mesh blended from a coarse solved one (the default
+//!   iterates on the coarse mesh and starts the fine level there).
 //! - `merge.rs`: the patches merged into one mesh, the curve vertices first.
 
 pub mod conformal;
@@ -34,10 +36,12 @@ mod lattice;
 mod merge;
 mod planar;
 mod relax;
+mod transfer;
 mod triangulate;
 mod tube;
 
 pub use flatten::{flatten_patches, PatchFlattening};
+pub use transfer::transfer_positions;
 
 use crate::error::Result;
 use crate::geom::mesh::Mesh;
