@@ -220,10 +220,15 @@ impl Progress {
             "nodes" => (40, "finding the patches"),
             "cycles" => (50, "resampling the curves"),
             "resample" => (60, "tessellating the patches"),
+            "coarse level" => ((60 + PREPARE_PER_MILLE) / 2, "tessellating the patches"),
             "tessellate" => (PREPARE_PER_MILLE, "solving (factorising)"),
             "first solve" => (PREPARE_PER_MILLE + solve_share, "3D iteration 1"),
             "iteration" => {
-                let k = detail.split(' ').next().and_then(|k| k.parse::<u64>().ok()).unwrap_or(1);
+                // "k of at most n, …": after the coarse level the fine one runs fewer.
+                let words: Vec<&str> = detail.split([' ', ',']).collect();
+                let k = words.first().and_then(|k| k.parse::<u64>().ok()).unwrap_or(1);
+                let its = words.get(4).and_then(|n| n.parse::<u64>().ok()).unwrap_or(its).max(1);
+                let solve_share = (1000 - PREPARE_PER_MILLE) / (1 + its);
                 bar.set_position((PREPARE_PER_MILLE + solve_share * (1 + k)).min(999));
                 bar.set_message(if k < its { format!("3D iteration {}", k + 1) } else { "finishing".into() });
                 return;

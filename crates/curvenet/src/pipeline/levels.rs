@@ -129,7 +129,7 @@ fn conformal_level(
 /// was not given: the spacing follows the flattened domains' area. Returns the mesh, its cut
 /// along the creases, its spacing, its segments' layout and whether its free vertices start on
 /// an iterated coarse surface. When a level of the iterated path cannot be tessellated (a very
-/// coarse network: its patches overlap), the path without coarse iterations is taken.
+/// coarse network: its patches overlap) or solved, the path without coarse iterations is taken.
 pub(super) fn conformal_stage(
     topo: &mut Topology,
     options: &Options,
@@ -150,8 +150,13 @@ pub(super) fn conformal_stage(
             let (res, mesh, _) = conformal_level(topo, 2.0 * d, &start, timings)?;
             solve_level(topo, options, (res, mesh), iterations, 2.0 * d, timings, st)
         })();
+        if let Ok(c) = &coarse {
+            let detail = format!("{} vertices, up to {iterations} 3D iterations", c.mesh.num_vertices());
+            progress("coarse level", st.operators + st.factor + st.solve, &detail);
+        }
         match coarse.and_then(|c| fine_level(topo, d, size, &c, true, timings, progress)) {
-            Err(Error::Topology { .. }) => {}
+            // The path without coarse iterations reports its own errors, if any.
+            Err(Error::Topology { .. } | Error::Numerical { .. }) => {}
             other => return other,
         }
     }
