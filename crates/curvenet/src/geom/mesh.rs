@@ -188,6 +188,18 @@ impl LaplacianPattern {
         LaplacianPattern { csc, diag, slots }
     }
 }
+
+/// Total area of the triangles `faces` at `positions`.
+pub fn surface_area(faces: &[[u32; 3]], positions: &[DVec3]) -> f64 {
+    faces
+        .iter()
+        .map(|f| {
+            let p = |k: usize| positions[f[k] as usize];
+            0.5 * (p(1) - p(0)).cross(p(2) - p(0)).length()
+        })
+        .sum()
+}
+
 /// Visits every undirected edge `a < b` of `faces` once, in increasing `(a, b)` order, with
 /// how many faces traverse it from `a` to `b` (`fwd`) and from `b` to `a` (`back`). The uses
 /// are bucketed by their smaller vertex (a counting sort), so this is linear in the faces

@@ -17,7 +17,7 @@ use super::options::Options;
 use super::prepare::{fold_warnings, manifold, planar_stage, segment_layout, Progress, SizeModel, Stage, Topology};
 use super::stats::Timings;
 use crate::error::{Error, Result, Warning};
-use crate::geom::mesh::Mesh;
+use crate::geom::mesh::{surface_area, Mesh};
 use crate::methods::iterated::{Iterated, IterationOptions, IterationParams};
 use crate::methods::normal_control::{normal_control, NormalControlOptions, NormalControlParams};
 use crate::operators::{cotan_operators, Metric};
@@ -81,14 +81,7 @@ fn solve_level(
     let mut first = normal_control(solved, &ops, &params, st)?;
     drop(ops);
     if iterations > 0 {
-        let area: f64 = solved
-            .faces
-            .iter()
-            .map(|f| {
-                let p = |k: usize| first.positions[f[k] as usize];
-                0.5 * (p(1) - p(0)).cross(p(2) - p(0)).length()
-            })
-            .sum();
+        let area = surface_area(&solved.faces, &first.positions);
         let params = IterationParams {
             options: IterationOptions { iterations, ..options.iterate },
             patch_size: (area / topo.patches.len().max(1) as f64).sqrt(),

@@ -200,14 +200,7 @@ fn iterate(
 ) -> Result<(MethodResult, crate::methods::iterated::IterationReport)> {
     let mesh = prepared.seams.as_ref().map_or(&prepared.mesh, |s| &s.mesh);
     let d = prepared.spacing;
-    let area: f64 = mesh
-        .faces
-        .iter()
-        .map(|f| {
-            let p = |k: usize| result.positions[f[k] as usize];
-            0.5 * (p(1) - p(0)).cross(p(2) - p(0)).length()
-        })
-        .sum();
+    let area = crate::geom::mesh::surface_area(&mesh.faces, &result.positions);
     let mean_area = area / mesh.num_vertices() as f64;
     let fine_iterations = if from_coarse { super::levels::FINE_ITERATIONS } else { options.iterate.iterations };
     let params = IterationParams {
