@@ -197,6 +197,14 @@ impl Iterated {
         Iterated { params, systems: None }
     }
 
+    /// The iterations with `params`, whose first normals' system reuses the symbolic analysis
+    /// (ordering, elimination tree, supernodes) of `propagation`, the first solve's
+    /// `(Ls M⁻¹ Ls)_ff` on the same mesh: `Ls M⁻¹ Ls + μ M` has its pattern, so the first
+    /// iteration is a numeric factorisation only (a different pattern is analysed afresh).
+    pub(crate) fn reusing(params: IterationParams, propagation: Option<Eliminated>) -> Self {
+        Iterated { params, systems: propagation.map(|p| (p, None)) }
+    }
+
     /// Iterates from `start` (a normal-control result on `mesh`). Returns the final surface
     /// and a report. With soft constraints the curve vertices are unknowns pulled towards
     /// their input positions in every fit (and move freely, without the normal projection).
@@ -398,3 +406,7 @@ pub fn iterate(
 ) -> Result<(MethodResult, IterationReport)> {
     Iterated::new(*params).run(mesh, start, t)
 }
+
+#[cfg(test)]
+#[path = "tests/iterated.rs"]
+mod tests;

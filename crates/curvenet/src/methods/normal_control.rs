@@ -105,6 +105,13 @@ impl NormalControl {
     pub fn new(params: NormalControlParams) -> Self {
         NormalControl { params, propagation: None, fit: None }
     }
+
+    /// Takes the factorisation of the propagation system `(Ls M⁻¹ Ls)_ff` of the last solve
+    /// (`None` before one), e.g. for [`super::iterated::Iterated::reusing`]: the iterations'
+    /// matrix has its pattern.
+    pub(crate) fn take_propagation(&mut self) -> Option<Eliminated> {
+        self.propagation.take()
+    }
 }
 
 impl SurfacingMethod for NormalControl {

@@ -19,7 +19,8 @@ use super::stats::Timings;
 use crate::error::{Error, Result, Warning};
 use crate::geom::mesh::{surface_area, Mesh};
 use crate::methods::iterated::{Iterated, IterationOptions, IterationParams};
-use crate::methods::normal_control::{normal_control, NormalControlOptions, NormalControlParams};
+use crate::methods::normal_control::{NormalControl, NormalControlOptions, NormalControlParams};
+use crate::methods::SurfacingMethod;
 use crate::operators::{cotan_operators, Metric};
 use crate::solve::timing::timed;
 use crate::solve::SolveTimings;
@@ -78,7 +79,8 @@ fn solve_level(
         options: NormalControlOptions { guide_updates: 1, ..Default::default() },
         ..Default::default()
     };
-    let mut first = normal_control(solved, &ops, &params, st)?;
+    let mut method = NormalControl::new(params);
+    let mut first = method.solve(solved, &ops, st)?;
     drop(ops);
     if iterations > 0 {
         let area = surface_area(&solved.faces, &first.positions);
@@ -90,7 +92,8 @@ fn solve_level(
             guide_area: options.normal_control.guide_area,
             soft_weight: None,
         };
-        first = Iterated::new(params).run(solved, first, st)?.0;
+        // Hard constraints, so the unknowns are the free vertices in both systems.
+        first = Iterated::reusing(params, method.take_propagation()).run(solved, first, st)?.0;
     }
     let positions = match &seams {
         Some(s) => s.merge(&first.positions),
