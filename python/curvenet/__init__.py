@@ -136,7 +136,8 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     ``propagated_normals`` (n,3) or ``None``.
 
     ``progress``: an optional callable ``progress(stage, seconds, detail)``, called after each
-    stage (``"nodes"``, ``"cycles"``, ``"coarse level"`` (the default), ``"resample"``,
+    stage (``"nodes"``, ``"cycles"``, the default's coarse level (``"coarse start"``, each
+    ``"coarse iteration"``, ``"coarse level"``), ``"resample"``,
     ``"tessellate"``, ``"first solve"`` (without a coarse level),
     each ``"iteration"``, ``"solve"``) with its seconds and a detail line — for a progress bar
     on long runs. An exception it raises is raised after the run.

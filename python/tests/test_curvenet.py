@@ -451,10 +451,15 @@ def test_progress_callback():
     V, F, info = curvenet.surface(curvenet.example("sphere"), vertices=3000,
                                   progress=lambda stage, seconds, detail: seen.append((stage, seconds, detail)))
     stages = [s for s, _, _ in seen]
-    assert [s for s in stages if s != "coarse level"][:4] == ["nodes", "cycles", "resample", "tessellate"], stages
-    assert stages.index("coarse level") < stages.index("resample"), stages
+    fine = [s for s in stages if not s.startswith("coarse")]
+    assert fine[:4] == ["nodes", "cycles", "resample", "tessellate"], stages
     # The default solves and iterates a coarse level first, then the fine one starts there.
-    assert stages[-1] == "solve" and "coarse level" in stages and "first solve" not in stages
+    coarse = [s for s in stages if s.startswith("coarse")]
+    assert coarse[0] == "coarse start" and coarse[-1] == "coarse level", stages
+    assert 1 <= coarse.count("coarse iteration") == len(info["coarse_iteration_updates"]) <= 2, stages
+    assert 0 < info["coarse_vertices"] < info["vertices"]
+    assert stages.index("coarse level") < stages.index("resample"), stages
+    assert stages[-1] == "solve" and "first solve" not in stages
     assert stages.count("iteration") == info["iterations"] >= 1
     assert all(t >= 0 for _, t, _ in seen)
 

@@ -183,10 +183,15 @@ pub(crate) struct Progress {
     bar: Option<indicatif::ProgressBar>,
     /// The 3D iterations the run will do at most (their share of the bar).
     iterations: std::cell::Cell<usize>,
+    /// Whether the run solves a coarse level first (the default; it reports "coarse start").
+    coarse: std::cell::Cell<bool>,
 }
 
 /// Bar units (per mille) of the stages before the solve.
 const PREPARE_PER_MILLE: u64 = 100;
+/// Bar units of the stages before the fine solve when a coarse level is solved and iterated
+/// first: about a third of a default run (1M sphere: 9 s of 27 s, docs/performance.md).
+const PREPARE_COARSE_PER_MILLE: u64 = 350;
 
 impl Progress {
     pub(crate) fn new(quiet: bool) -> Self {
@@ -200,7 +205,7 @@ impl Progress {
             bar.enable_steady_tick(std::time::Duration::from_millis(200));
             bar
         });
-        Progress { bar, iterations: std::cell::Cell::new(0) }
+        Progress { bar, iterations: std::cell::Cell::new(0), coarse: std::cell::Cell::new(false) }
     }
 
     /// Sets how many 3D iterations follow the first solve (0 for a single pass).
@@ -210,27 +215,40 @@ impl Progress {
 
     pub(crate) fn stage(&self, name: &str, seconds: f64, detail: &str) {
         let Some(bar) = &self.bar else { return };
-        bar.println(format!("  {name:<11}{seconds:>8.3} s   {detail}"));
+        bar.println(format!("  {name:<16}{seconds:>8.3} s   {detail}"));
         let its = self.iterations.get() as u64;
+        if name == "coarse start" {
+            self.coarse.set(true);
+        }
+        let prepare = if self.coarse.get() { PREPARE_COARSE_PER_MILLE } else { PREPARE_PER_MILLE };
+        // "k of at most n, …" (iterations of the coarse or the fine level).
+        let words: Vec<&str> = detail.split([' ', ',']).collect();
+        let k = words.first().and_then(|k| k.parse::<u64>().ok()).unwrap_or(1);
+        let of = words.get(4).and_then(|n| n.parse::<u64>().ok()).unwrap_or(its).max(1);
         // The solve's share: one part for the first solve, one per iteration.
-        let solve_share = (1000 - PREPARE_PER_MILLE) / (1 + its);
+        let solve_share = (1000 - prepare) / (1 + its);
         let (position, next) = match name {
             "read" => (20, "finding the nodes"),
             "normals" => (30, "finding the nodes"),
             "nodes" => (40, "finding the patches"),
             "cycles" => (50, "resampling the curves"),
             "resample" => (60, "tessellating the patches"),
-            "coarse level" => ((60 + PREPARE_PER_MILLE) / 2, "tessellating the patches"),
-            "tessellate" => (PREPARE_PER_MILLE, "solving (factorising)"),
-            "first solve" => (PREPARE_PER_MILLE + solve_share, "3D iteration 1"),
+            // The coarse level: its planar start, then its 3D iterations.
+            "coarse start" => (100, "coarse level: 3D iteration 1"),
+            "coarse iteration" => {
+                let next = if k < of { format!("coarse level: 3D iteration {}", k + 1) } else { "flattening".into() };
+                bar.set_position((100 + (PREPARE_COARSE_PER_MILLE - 150) * k / of).max(bar.position()));
+                bar.set_message(next);
+                return;
+            }
+            "coarse level" => (PREPARE_COARSE_PER_MILLE - 50, "tessellating the patches"),
+            "tessellate" => (prepare, "solving (factorising)"),
+            "first solve" => (prepare + solve_share, "3D iteration 1"),
             "iteration" => {
-                // "k of at most n, …": after the coarse level the fine one runs fewer.
-                let words: Vec<&str> = detail.split([' ', ',']).collect();
-                let k = words.first().and_then(|k| k.parse::<u64>().ok()).unwrap_or(1);
-                let its = words.get(4).and_then(|n| n.parse::<u64>().ok()).unwrap_or(its).max(1);
-                let solve_share = (1000 - PREPARE_PER_MILLE) / (1 + its);
-                bar.set_position((PREPARE_PER_MILLE + solve_share * (1 + k)).min(999));
-                bar.set_message(if k < its { format!("3D iteration {}", k + 1) } else { "finishing".into() });
+                // After the coarse level the fine one runs fewer iterations than `its`.
+                let solve_share = (1000 - prepare) / (1 + of);
+                bar.set_position((prepare + solve_share * (1 + k)).min(999).max(bar.position()));
+                bar.set_message(if k < of { format!("3D iteration {}", k + 1) } else { "finishing".into() });
                 return;
             }
             "solve" => (1000, "writing"),

@@ -311,3 +311,18 @@ fn the_default_converges_with_the_mesh_on_the_coarse_torus() {
     let sphere = error_with(&example("sphere").unwrap(), &example_truth("sphere").unwrap(), &Options::default());
     assert!(sphere.mean <= 2.5e-4, "{sphere:?}");
 }
+
+#[test]
+fn the_statistics_report_the_coarse_level() {
+    // The default iterates a coarse level at twice the spacing (about a quarter of the
+    // vertices) and the fine mesh starts there; the single pass has none.
+    let net = example("sphere").unwrap();
+    let s = surface(&net, &Options::default().with_vertices(8000)).unwrap();
+    let (fine, coarse) = (s.stats.vertices as f64, s.stats.coarse_vertices as f64);
+    assert!(coarse > 0.15 * fine && coarse < 0.4 * fine, "{coarse} coarse vertices for {fine}");
+    let updates = &s.stats.coarse_iteration_updates;
+    assert!((1..=2).contains(&updates.len()), "{updates:?}");
+    assert!(updates.iter().all(|u| u.is_finite() && *u > 0.0), "{updates:?}");
+    let fast = surface(&net, &Options::fast().with_vertices(8000)).unwrap();
+    assert_eq!((fast.stats.coarse_vertices, fast.stats.coarse_iteration_updates.len()), (0, 0));
+}

@@ -15,6 +15,7 @@
 
 use super::options::Options;
 use super::prepare::{fold_warnings, manifold, planar_stage, segment_layout, Progress, SizeModel, Stage, Topology};
+use super::stats::CoarseLevel;
 use super::stats::Timings;
 use crate::error::{Error, Result, Warning};
 use crate::geom::mesh::{surface_area, Mesh};
@@ -35,6 +36,8 @@ struct Level {
     res: Resampled,
     mesh: Mesh,
     flat: Vec<Option<PatchFlattening>>,
+    /// Largest vertex update of each of its 3D iterations.
+    updates: Vec<f64>,
 }
 
 /// 3D iterations on the fine level after the coarse level iterated: one (one factorisation).
@@ -62,7 +65,9 @@ fn planar_level(topo: &Topology, d: f64, timings: &mut Timings) -> Result<(Resam
 }
 
 /// Solves the level `(res, mesh)` in its domain (normal-control whatever the method, on the
-/// mesh cut open along the creases), iterates it `iterations` times in 3D, and flattens it.
+/// mesh cut open along the creases), iterates it `iterations` times in 3D (reported to
+/// `progress` as "coarse iteration"), and flattens it.
+#[allow(clippy::too_many_arguments)]
 fn solve_level(
     topo: &Topology,
     options: &Options,
@@ -71,6 +76,7 @@ fn solve_level(
     spacing: f64,
     timings: &mut Timings,
     st: &mut SolveTimings,
+    progress: Progress<'_>,
 ) -> Result<Level> {
     let seams = topo.seams(&res, &mesh);
     let solved = seams.as_ref().map_or(&mesh, |s| &s.mesh);
@@ -82,6 +88,7 @@ fn solve_level(
     let mut method = NormalControl::new(params);
     let mut first = method.solve(solved, &ops, st)?;
     drop(ops);
+    let mut updates = Vec::new();
     if iterations > 0 {
         let area = surface_area(&solved.faces, &first.positions);
         let params = IterationParams {
@@ -93,7 +100,14 @@ fn solve_level(
             soft_weight: None,
         };
         // Hard constraints, so the unknowns are the free vertices in both systems.
-        first = Iterated::reusing(params, method.take_propagation()).run(solved, first, st)?.0;
+        let clock = crate::solve::timing::Instant::now();
+        let mut iterated = Iterated::reusing(params, method.take_propagation());
+        let (result, report) = iterated.run_reporting(solved, first, st, &mut |k, of, update| {
+            let detail = format!("{k} of at most {of}, largest move {update:.2e}");
+            progress("coarse iteration", crate::solve::timing::seconds_since(clock), &detail);
+        })?;
+        first = result;
+        updates = report.updates;
     }
     let positions = match &seams {
         Some(s) => s.merge(&first.positions),
@@ -101,7 +115,7 @@ fn solve_level(
     };
     let mesh = Mesh { positions, ..mesh };
     let flat = timed(&mut timings.tessellate, || flatten_patches(&topo.patches, &res, &mesh));
-    Ok(Level { res, mesh, flat })
+    Ok(Level { res, mesh, flat, updates })
 }
 
 /// The level at spacing `d` tessellated in the flattening of `prev`: its curve vertices, mesh
@@ -142,9 +156,15 @@ pub(super) fn conformal_stage(
         // mean error) and the torus's fairness (25k, curvature p99 2.8 %, 7.2 %, 9.8 %).
         let coarse = (|| -> Result<Level> {
             let first = planar_level(topo, 4.0 * d, timings)?;
-            let start = solve_level(topo, options, first, 0, 4.0 * d, timings, st)?;
+            let start = solve_level(topo, options, first, 0, 4.0 * d, timings, st, &mut *progress)?;
             let (res, mesh, _) = conformal_level(topo, 2.0 * d, &start, timings)?;
-            solve_level(topo, options, (res, mesh), iterations, 2.0 * d, timings, st)
+            let detail = format!(
+                "planar start {} vertices, coarse level {} vertices",
+                start.mesh.num_vertices(),
+                mesh.num_vertices()
+            );
+            progress("coarse start", st.operators + st.factor + st.solve, &detail);
+            solve_level(topo, options, (res, mesh), iterations, 2.0 * d, timings, st, &mut *progress)
         })();
         if let Ok(c) = &coarse {
             let detail = format!("{} vertices, up to {iterations} 3D iterations", c.mesh.num_vertices());
@@ -157,7 +177,7 @@ pub(super) fn conformal_stage(
         }
     }
     let first = planar_level(topo, 2.0 * d, timings)?;
-    let coarse = solve_level(topo, options, first, 0, 2.0 * d, timings, st)?;
+    let coarse = solve_level(topo, options, first, 0, 2.0 * d, timings, st, &mut *progress)?;
     fine_level(topo, d, size, &coarse, false, timings, progress)
 }
 
@@ -202,5 +222,7 @@ fn fine_level(
     let seams = timed(&mut timings.tessellate, || topo.seams(&res, &mesh));
     let detail = format!("conformal: {} vertices, {} faces", mesh.num_vertices(), mesh.faces.len());
     progress("tessellate", timings.tessellate, &detail);
-    Ok((mesh, seams, d, segment_layout(&topo.g, &res), transfer))
+    let coarse =
+        transfer.then(|| CoarseLevel { vertices: coarse.mesh.num_vertices(), updates: coarse.updates.clone() });
+    Ok((mesh, seams, d, segment_layout(&topo.g, &res), coarse))
 }

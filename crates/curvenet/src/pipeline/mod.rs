@@ -36,7 +36,10 @@ pub fn surface(network: &Network, options: &Options) -> Result<Surface> {
     surface_with_progress(network, options, &mut |_, _, _| {})
 }
 
-/// Surfaces `network`, reporting each finished stage to `progress(stage, seconds, detail)`.
+/// Surfaces `network`, reporting each finished stage to `progress(stage, seconds, detail)`:
+/// "normals" (when inferred), "nodes", "cycles", the default's coarse level ("coarse start",
+/// each "coarse iteration", "coarse level"), "resample", "tessellate", "first solve" (without
+/// a coarse level), each "iteration" (detail "k of at most n, largest move …"), "solve".
 pub fn surface_with_progress(
     network: &Network,
     options: &Options,

@@ -4,7 +4,7 @@
 //! coarse first solve whose conformal flattening the patches are triangulated in.
 
 use super::options::{MeshOptions, Options, Patching};
-use super::stats::Timings;
+use super::stats::{CoarseLevel, Timings};
 use crate::curves::CurveSpline;
 use crate::error::{Error, Result, Warning};
 use crate::geom::mesh::Mesh;
@@ -61,6 +61,8 @@ pub(crate) struct Prepared {
     /// The mesh's free vertices start on the coarse level's iterated surface
     /// ([`crate::tessellate::transfer_positions`]): the fine level's first solve is not needed.
     pub transferred: bool,
+    /// The coarse level the free vertices started on (statistics), if any.
+    pub coarse: Option<CoarseLevel>,
 }
 
 /// The network's topology: the validated network, its nodes, segments, splines and patches.
@@ -97,7 +99,7 @@ pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'
     timings.resample += seconds_since(clock);
 
     let mut st = SolveTimings::default();
-    let (mesh, seams, d, layout, transferred) = match options.mesh.patching {
+    let (mesh, seams, d, layout, coarse) = match options.mesh.patching {
         Patching::Planar => {
             let (res, mesh) = planar_stage(&topo, d, &mut timings)?;
             let seams = timed(&mut timings.tessellate, || topo.seams(&res, &mesh));
@@ -106,7 +108,7 @@ pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'
             progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
             let detail = format!("{} vertices, {} faces", mesh.num_vertices(), mesh.faces.len());
             progress("tessellate", timings.tessellate, &detail);
-            (mesh, seams, d, layout, false)
+            (mesh, seams, d, layout, None)
         }
         Patching::Conformal => {
             let spacing = options.mesh.spacing.is_none().then_some((&size, target));
@@ -130,7 +132,8 @@ pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'
         warnings: topo.warnings,
         timings,
         solve_timings: st,
-        transferred,
+        transferred: coarse.is_some(),
+        coarse,
     })
 }
 
@@ -232,8 +235,8 @@ pub(super) fn planar_stage(topo: &Topology, d: f64, timings: &mut Timings) -> Re
 }
 
 /// A tessellation stage's result: the mesh, its cut along the creases, the spacing, the
-/// segments' layout, whether the free vertices start on the coarse level's iterated surface.
-pub(super) type Stage = (Mesh, Option<Seams>, f64, Vec<[usize; 4]>, bool);
+/// segments' layout, the coarse level whose iterated surface the free vertices start on.
+pub(super) type Stage = (Mesh, Option<Seams>, f64, Vec<[usize; 4]>, Option<CoarseLevel>);
 
 /// Checks that the tessellated patches join into an edge-manifold, consistently oriented mesh
 /// ([`crate::geom::mesh::bad_edge`]); an edge in more than two faces means that two patches overlap

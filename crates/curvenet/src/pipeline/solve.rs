@@ -4,7 +4,7 @@
 
 use super::options::Options;
 use super::prepare::{Prepared, Progress};
-use super::stats::{Stats, Surface, Timings};
+use super::stats::{CoarseLevel, Stats, Surface, Timings};
 use crate::error::{Error, Result, Warning};
 use crate::geom::mesh::Mesh;
 use crate::methods::andrews2011::Andrews2011;
@@ -140,6 +140,8 @@ pub(crate) fn solve_prepared(
     }
     let mut iteration_report: (Vec<f64>, Option<Stop>) = (Vec::new(), None);
     let mut result;
+    // The coarse level's figures, when the fine level started on it.
+    let coarse = from_coarse.as_ref().and(prepared.coarse.clone());
     if let Some((r, report)) = from_coarse {
         result = r;
         iteration_report = (report.updates, Some(report.stop));
@@ -184,7 +186,7 @@ pub(crate) fn solve_prepared(
     timings.factor = st.factor;
     timings.solve = st.solve;
     progress("solve", st.operators + st.factor + st.solve, options.method.name());
-    Ok(finish(prepared, options, result, iteration_report, warnings, timings, base, start))
+    Ok(finish(prepared, options, result, (iteration_report, coarse), warnings, timings, base, start))
 }
 
 /// Normal-control's 3D iterations from `result`, with the iterations object `state` keeps
@@ -226,7 +228,7 @@ fn finish(
     prepared: Cow<'_, Prepared>,
     options: &Options,
     result: MethodResult,
-    iteration_report: (Vec<f64>, Option<Stop>),
+    (iteration_report, coarse): ((Vec<f64>, Option<Stop>), Option<CoarseLevel>),
     warnings: Vec<Warning>,
     mut timings: Timings,
     base: Timings,
@@ -253,6 +255,8 @@ fn finish(
         iterations: iteration_report.0.len(),
         iteration_stop: iteration_report.1.map(|s| s.name().to_string()),
         iteration_updates: iteration_report.0,
+        coarse_vertices: coarse.as_ref().map_or(0, |c| c.vertices),
+        coarse_iteration_updates: coarse.map_or_else(Vec::new, |c| c.updates),
         inferred_normals: None,
         peak_memory_bytes: None,
         timings,

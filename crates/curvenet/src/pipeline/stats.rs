@@ -7,6 +7,15 @@ use crate::geom::DVec3;
 use crate::io::MeshData;
 use serde::Serialize;
 
+/// The coarse level of a run (`pipeline::levels`), for the statistics.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct CoarseLevel {
+    /// Its vertices.
+    pub(crate) vertices: usize,
+    /// Largest vertex update of each of its 3D iterations.
+    pub(crate) updates: Vec<f64>,
+}
+
 /// Seconds per stage.
 #[derive(Clone, Copy, Debug, Default, Serialize)]
 pub struct Timings {
@@ -61,6 +70,12 @@ pub struct Stats {
     pub iteration_stop: Option<String>,
     /// Largest vertex update of each iteration.
     pub iteration_updates: Vec<f64>,
+    /// Vertices of the coarse level the fine mesh started on (the default: twice the
+    /// spacing, `pipeline::levels`); 0 without one.
+    pub coarse_vertices: usize,
+    /// Largest vertex update of each 3D iteration of the coarse level (`iterations` counts
+    /// the fine level's).
+    pub coarse_iteration_updates: Vec<f64>,
     /// Peak resident memory of the process in bytes, when the front end measured it.
     pub peak_memory_bytes: Option<u64>,
     /// What the normal inference found, when curves came without normals (or with
