@@ -15,8 +15,7 @@
 
 use super::options::Options;
 use super::prepare::{fold_warnings, manifold, planar_stage, segment_layout, Progress, SizeModel, Stage, Topology};
-use super::stats::CoarseLevel;
-use super::stats::Timings;
+use super::stats::{CoarseLevel, Timings};
 use crate::error::{Error, Result, Warning};
 use crate::geom::mesh::{surface_area, Mesh};
 use crate::methods::iterated::{Iterated, IterationOptions, IterationParams};
