@@ -153,6 +153,11 @@ pub(super) fn conformal_stage(
         // Coarse level at 2d: measured against 3d and 4d (issue 18; 100k sphere 1.3 s, 0.9 s,
         // 0.8 s), the coarser ones lose the sphere's accuracy (20k: 2.1e-4, 2.4e-4, 2.8e-4
         // mean error) and the torus's fairness (25k, curvature p99 2.8 %, 7.2 %, 9.8 %).
+        // `d` is the first estimate, from the patches' planar projections: on curved patches
+        // it is finer than the fine level's (which follows the flattened areas), so the torus's
+        // coarse level has 36 % of the fine vertices, the sphere's 25 %. Re-deriving it from
+        // the 4d level's flattened areas (25 % on both) cost the torus its fairness at scale
+        // (curvature p99 at 80k 3.8 → 4.9 %, at 320k 6.0 → 10.0 %): measured, not kept.
         let coarse = (|| -> Result<Level> {
             let first = planar_level(topo, 4.0 * d, timings)?;
             let start = solve_level(topo, options, first, 0, 4.0 * d, timings, st, &mut *progress)?;
