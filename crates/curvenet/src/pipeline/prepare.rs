@@ -58,10 +58,9 @@ pub(crate) struct Prepared {
     pub timings: Timings,
     /// Seconds of the conformal first solve.
     pub solve_timings: SolveTimings,
-    /// The mesh's free vertices start on the coarse level's iterated surface
-    /// ([`crate::tessellate::transfer_positions`]): the fine level's first solve is not needed.
-    pub transferred: bool,
-    /// The coarse level the free vertices started on (statistics), if any.
+    /// The coarse level whose iterated surface the mesh's free vertices start on
+    /// ([`crate::tessellate::transfer_positions`]; the fine level's first solve is not needed),
+    /// if any: `None` without one, and after the curves changed (the start is the old curves').
     pub coarse: Option<CoarseLevel>,
 }
 
@@ -132,7 +131,6 @@ pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'
         warnings: topo.warnings,
         timings,
         solve_timings: st,
-        transferred: coarse.is_some(),
         coarse,
     })
 }

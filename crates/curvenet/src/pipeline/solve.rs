@@ -128,7 +128,7 @@ pub(crate) fn solve_prepared(
     // falls back to the fine level's own first solve.
     let mut from_coarse = None;
     let mut ops = Some(ops);
-    if iterating && fresh && prepared.transferred {
+    if iterating && fresh && prepared.coarse.is_some() {
         ops = None;
         let start = MethodResult { positions: mesh.positions.clone(), propagated_normals: None, guide_curvature: None };
         let (r, report) = iterate(options, &prepared, start, state, &mut st, progress, true)?;

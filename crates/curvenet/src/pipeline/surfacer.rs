@@ -135,7 +135,7 @@ impl Surfacer {
         }
         self.prepared.mesh.curve_normals = res.normals;
         // The free vertices' start on the coarse level's surface is the old curves'.
-        self.prepared.transferred = false;
+        self.prepared.coarse = None;
         self.network = network;
         Ok(())
     }
@@ -160,7 +160,7 @@ impl Surfacer {
         self.prepared.mesh.curve_normals = res.normals;
         self.prepared.curves = net.curves.iter().map(|c| (c.points.clone(), c.closed)).collect();
         self.prepared.input_spacing = net.mean_sample_spacing();
-        self.prepared.transferred = false;
+        self.prepared.coarse = None;
         if self.options.soft.is_some() {
             // The soft weight is scaled by the input sample spacing: a new system.
             self.kept = None;
