@@ -56,7 +56,7 @@ pub(crate) struct Prepared {
     pub warnings: Vec<Warning>,
     /// Seconds of the stages so far (`total`: their sum).
     pub timings: Timings,
-    /// Seconds of the conformal first solve.
+    /// Seconds of the solves before the fine level's (the conformal first solve, the coarse levels).
     pub solve_timings: SolveTimings,
     /// The coarse level whose iterated surface the mesh's free vertices start on
     /// ([`crate::tessellate::transfer_positions`]; the fine level's first solve is not needed),

@@ -49,9 +49,12 @@ fn soft_weight(options: &Options, s: f64, input_spacing: f64, mean_area: f64, sp
     }
 }
 
-/// The method object of `options.method` with its scales from the operators `ops`.
-fn make_method(options: &Options, prepared: &Prepared, ops: &Operators) -> Box<dyn SurfacingMethod> {
-    let mean_area = ops.mass.iter().sum::<f64>() / ops.mass.len() as f64;
+/// The method object of `options.method` with its scales from the patches' domains of
+/// `solved` (the mesh it solves on: cut along the creases for normal-control).
+fn make_method(options: &Options, prepared: &Prepared, solved: &Mesh) -> Box<dyn SurfacingMethod> {
+    // The domains' total area (that of the mass matrix of `domain_operators`).
+    let area: f64 = solved.planar.iter().map(|q| 0.5 * (q[1] - q[0]).perp_dot(q[2] - q[0]).abs()).sum();
+    let mean_area = area / solved.num_vertices() as f64;
     let soft = |s: f64| soft_weight(options, s, prepared.input_spacing, mean_area, prepared.spacing);
     let mesh = &prepared.mesh;
     match options.method {
@@ -64,7 +67,6 @@ fn make_method(options: &Options, prepared: &Prepared, ops: &Operators) -> Box<d
         Method::Method4 => Box::new(Method4::new()),
         Method::ShortPaper => {
             // ω₁ = w1 / s⁴ with s the mean patch size.
-            let area: f64 = ops.mass.iter().sum();
             let patch_count = mesh.face_patch.iter().max().map_or(1, |m| *m as usize + 1);
             let s = (area / patch_count as f64).sqrt();
             Box::new(ShortPaper::new(ShortPaperParams {
@@ -112,7 +114,6 @@ pub(crate) fn solve_prepared(
     // the creases' second normals (design.md §13).
     let seams = prepared.seams.as_ref().filter(|_| options.method == Method::NormalControl);
     let mesh = seams.map_or(&prepared.mesh, |s| &s.mesh);
-    let ops = timed(&mut st.operators, || domain_operators(mesh))?;
     let keep = kept.is_some();
     let mut one_shot: Option<Kept> = None;
     let slot: &mut Option<Kept> = match kept {
@@ -120,16 +121,16 @@ pub(crate) fn solve_prepared(
         None => &mut one_shot,
     };
     let fresh = slot.is_none();
-    let state = slot.get_or_insert_with(|| Kept { method: make_method(options, &prepared, &ops), iterated: None });
+    let state = slot.get_or_insert_with(|| Kept { method: make_method(options, &prepared, mesh), iterated: None });
     let iterating = options.iterate.iterations > 0 && options.method == Method::NormalControl;
     // The coarse level iterated and the free vertices start on its surface: the fine level's
-    // first solve is left out (not after the curves moved: the start is the old surface's).
-    // A start whose fine iteration degenerates or diverges (a tube's seam at very few vertices)
-    // falls back to the fine level's own first solve.
+    // first solve is left out (not after the curves moved: the start is the old surface's),
+    // and with it the domain operators. A start whose fine iteration degenerates or diverges
+    // (a tube's seam at very few vertices) falls back to the fine level's own first solve.
+    let from_coarse_start = iterating && fresh && prepared.coarse.is_some();
+    let ops = if from_coarse_start { None } else { Some(timed(&mut st.operators, || domain_operators(mesh))?) };
     let mut from_coarse = None;
-    let mut ops = Some(ops);
-    if iterating && fresh && prepared.coarse.is_some() {
-        ops = None;
+    if from_coarse_start {
         let start = MethodResult { positions: mesh.positions.clone(), propagated_normals: None, guide_curvature: None };
         let (r, report) = iterate(options, &prepared, start, state, &mut st, progress, true)?;
         if matches!(report.stop, Stop::Converged | Stop::MaxIterations) {
