@@ -10,6 +10,7 @@ macro_rules! out {
 
 mod batch;
 mod bench;
+mod consolidate;
 mod demo;
 mod eval;
 mod example;
@@ -86,6 +87,9 @@ enum Command {
     /// Infer the normals of curves that come without (3D sketches, CAD edges, polylines) and
     /// write the network with them.
     Normals(normals::NormalsArgs),
+    /// Consolidate the raw strokes of a sketch (gaps closed, overdraw merged, hooks and stubs
+    /// trimmed: the first stage of `surface`) and write the network, to look at or edit.
+    Consolidate(consolidate::ConsolidateArgs),
     /// Surface the bundled sphere network and report where the result went and how accurate it is.
     Demo(demo::DemoArgs),
     /// Measure a mesh against a ground truth: distances, normal angles, N* deviation (\[CG\] §4.3).
@@ -138,6 +142,7 @@ fn main() -> ExitCode {
         Command::Example(a) => example::run(&a),
         Command::Demo(a) => demo::run(&a),
         Command::Normals(a) => normals::run(&a),
+        Command::Consolidate(a) => consolidate::run(&a),
         Command::Eval(a) => eval::run(&a),
         Command::Sample(a) => sample::run(&a),
         Command::Study(a) => study::run(&a),

@@ -1,6 +1,7 @@
 //! Small geometric helpers shared by the pipeline stages: vector aliases, bounding boxes,
 //! orthonormal frames and segment–segment closest points.
 
+pub mod distance;
 pub mod mesh;
 pub mod polyline;
 

@@ -14,6 +14,7 @@
 //! factorisations for re-solves with new curve normals or positions.
 
 pub mod budget;
+pub mod coverage;
 pub mod files;
 pub mod infer;
 mod levels;
@@ -29,6 +30,7 @@ pub use stats::{InferredNormals, Stats, Surface, Timings};
 
 use crate::error::Result;
 use crate::network::Network;
+use crate::topology::consolidate::Consolidated;
 use std::borrow::Cow;
 
 /// Surfaces `network` with `options`. See [`surface_with_progress`].
@@ -37,7 +39,7 @@ pub fn surface(network: &Network, options: &Options) -> Result<Surface> {
 }
 
 /// Surfaces `network`, reporting each finished stage to `progress(stage, seconds, detail)`:
-/// "normals" (when inferred), "nodes", "cycles", the default's coarse level ("coarse start",
+/// "consolidate" (when raw strokes were changed), "normals" (when inferred), "nodes", "cycles", the default's coarse level ("coarse start",
 /// each "coarse iteration", "coarse level"), "resample", "tessellate", "first solve" (without
 /// a coarse level), each "iteration" (detail "k of at most n, largest move …"), "solve".
 pub fn surface_with_progress(
@@ -45,6 +47,9 @@ pub fn surface_with_progress(
     options: &Options,
     progress: &mut dyn FnMut(&str, f64, &str),
 ) -> Result<Surface> {
+    let original = network;
+    let consolidated = consolidate(network, options, progress)?;
+    let network = consolidated.as_ref().filter(|c| c.changed()).map_or(network, |c| &c.network);
     let inferred = if infer::needs_inference(network, options) {
         let inferred = infer::infer_normals(network, options)?;
         let r = &inferred.report;
@@ -58,8 +63,50 @@ pub fn surface_with_progress(
     let prepared = prepare::prepare(network, options, progress).map_err(explain)?;
     let base = prepared.timings;
     let mut surface = solve::solve_prepared(Cow::Owned(prepared), options, progress, None, base).map_err(explain)?;
+    let changed = consolidated.as_ref().is_some_and(|c| c.changed());
+    if inferred.is_some() || changed || !surface.warnings.is_empty() {
+        let mut warnings = Vec::new();
+        let clock = crate::solve::timing::Instant::now();
+        surface.stats.coverage = Some(coverage::check_coverage(&surface.mesh, original, &mut warnings)?);
+        surface.stats.timings.total += crate::solve::timing::seconds_since(clock);
+        surface.warnings.extend(warnings);
+    }
     if let Some(i) = inferred {
         infer::add_to_surface(&mut surface, &i.report, &i.warnings);
     }
+    if let Some(c) = consolidated {
+        add_consolidation(&mut surface, c);
+    }
     Ok(surface)
+}
+
+/// The consolidation stage ([`crate::topology::consolidate`]) with the run's options: `None`
+/// when it is off.
+pub(crate) fn consolidate(
+    network: &Network,
+    options: &Options,
+    progress: &mut dyn FnMut(&str, f64, &str),
+) -> Result<Option<Consolidated>> {
+    if !options.consolidate.enabled {
+        return Ok(None);
+    }
+    prepare::check_options(options)?;
+    let c = crate::topology::consolidate::consolidate(network, &options.consolidate, options.mesh.snap)?;
+    let r = &c.report;
+    if c.changed() {
+        let detail = format!("{} joined, {} merged, {} trimmed", r.joined, r.merged, r.trimmed);
+        progress("consolidate", r.seconds, &detail);
+    }
+    Ok(Some(c))
+}
+
+/// Adds what consolidation did to the `surface` of the network it made: its statistics and
+/// seconds, its warnings first.
+pub(crate) fn add_consolidation(surface: &mut Surface, c: Consolidated) {
+    surface.stats.timings.consolidate = c.report.seconds;
+    surface.stats.timings.total += c.report.seconds;
+    surface.stats.consolidation = Some(c.report);
+    let mut warnings = c.warnings;
+    warnings.append(&mut surface.warnings);
+    surface.warnings = warnings;
 }

@@ -14,6 +14,7 @@ use crate::methods::eg2016::ShortPaperOptions;
 use crate::methods::iterated::IterationOptions;
 use crate::methods::normal_control::NormalControlOptions;
 use crate::methods::{Energy, GuideArea, Method};
+use crate::topology::consolidate::ConsolidateOptions;
 
 /// The domain each patch is triangulated in (option `patching`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -126,6 +127,9 @@ pub struct Options {
     pub cauchy: CauchyOptions,
     /// `infer_normals`: which curves' normals are inferred ([`crate::pipeline::infer`]).
     pub infer_normals: InferNormals,
+    /// `consolidate`, `gap`: raw strokes joined, merged and trimmed before node finding
+    /// ([`crate::topology::consolidate`]).
+    pub consolidate: ConsolidateOptions,
 }
 
 /// A named starting point for the options, defined here only; explicit values override it.
@@ -558,6 +562,40 @@ pub const OPTIONS: &[OptionSpec] = &[
             Ok(())
         },
         get: |o| o.mesh.snap.map(text),
+    },
+    OptionSpec {
+        name: "consolidate",
+        value_name: "on|off",
+        choices: &["on", "off"],
+        help: "Consolidate raw strokes before node finding: ends that stop short of or overshoot another stroke \
+               within the gap become junctions on it, strokes drawn along each other (twice, retraced) become one \
+               curve, hooks and stubs at stroke ends are trimmed. A clean network is left exactly as given.",
+        unset: None,
+        aliases: &[],
+        set: |o, v| {
+            o.consolidate.enabled = match v {
+                "on" | "true" | "True" | "yes" => true,
+                "off" | "false" | "False" | "no" => false,
+                _ => return Err("on or off"),
+            };
+            Ok(())
+        },
+        get: |o| Some(if o.consolidate.enabled { "on" } else { "off" }.to_string()),
+    },
+    OptionSpec {
+        name: "gap",
+        value_name: "D",
+        choices: &[],
+        help: "Consolidation tolerance: stroke ends within D of another stroke are joined to it, strokes within \
+               D/2 of each other over a stretch of 2 D are merged, hooks and stubs shorter than D trimmed.",
+        unset: Some("from the sketch: 1.25 × the 90th percentile of the distances from a stroke end to the \
+                     nearest other stroke, between 0.5 % and 2 % of the bounding-box diagonal"),
+        aliases: &[],
+        set: |o, v| {
+            o.consolidate.gap = Some(number(v).ok().filter(|s| *s > 0.0).ok_or("a positive distance")?);
+            Ok(())
+        },
+        get: |o| o.consolidate.gap.map(text),
     },
     OptionSpec {
         name: "max_memory",

@@ -259,6 +259,8 @@ fn finish(
         coarse_vertices: coarse.as_ref().map_or(0, |c| c.vertices),
         coarse_iteration_updates: coarse.map_or_else(Vec::new, |c| c.updates),
         inferred_normals: None,
+        consolidation: None,
+        coverage: None,
         peak_memory_bytes: None,
         timings,
     };

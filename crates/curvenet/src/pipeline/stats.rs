@@ -21,6 +21,8 @@ pub(crate) struct CoarseLevel {
 pub struct Timings {
     /// Reading the input file (front ends).
     pub read: f64,
+    /// Consolidating raw strokes (gaps, overdraw, jitter; `topology::consolidate`).
+    pub consolidate: f64,
     /// Inferring the normals of curves that come without (0 when all are given).
     pub normals: f64,
     /// Validation, nodes and segments.
@@ -81,6 +83,12 @@ pub struct Stats {
     /// What the normal inference found, when curves came without normals (or with
     /// `infer_normals = all`).
     pub inferred_normals: Option<InferredNormals>,
+    /// The fraction of the input strokes' length the surface passes near (within 1 % of the
+    /// diagonal, `pipeline::coverage`), where strokes may have been left out: measured when
+    /// normals were inferred, strokes consolidated or the run warned.
+    pub coverage: Option<f64>,
+    /// What consolidation did (`None` with `consolidate = off`).
+    pub consolidation: Option<crate::topology::consolidate::Consolidation>,
     /// Seconds per stage.
     pub timings: Timings,
 }

@@ -35,6 +35,8 @@ pub struct Surfacer {
     /// What the inference found when curves came without normals (added to the first solve's
     /// surface).
     inferred: Option<(super::InferredNormals, Vec<crate::Warning>)>,
+    /// What consolidation did (added to the first solve's surface).
+    consolidated: Option<crate::topology::consolidate::Consolidated>,
     options: Options,
     prepared: Prepared,
     kept: Option<Kept>,
@@ -51,6 +53,8 @@ impl Surfacer {
     /// as a duplicate is not in it; the first solve's warnings name it). Moved points keep the
     /// normals inferred for the first shape.
     pub fn new(network: &Network, options: &Options) -> Result<Self> {
+        let consolidated = super::consolidate(network, options, &mut |_, _, _| {})?;
+        let network = consolidated.as_ref().filter(|c| c.changed()).map_or(network, |c| &c.network);
         let (network, inferred) = if super::infer::needs_inference(network, options) {
             let i = super::infer::infer_normals(network, options)?;
             (i.network, Some((i.report, i.warnings)))
@@ -59,7 +63,7 @@ impl Surfacer {
         };
         let explain = |e| if inferred.is_some() { super::infer::explain(e) } else { e };
         let prepared = prepare(&network, options, &mut |_, _, _| {}).map_err(explain)?;
-        Ok(Surfacer { network, inferred, options: options.clone(), prepared, kept: None, solves: 0 })
+        Ok(Surfacer { network, inferred, consolidated, options: options.clone(), prepared, kept: None, solves: 0 })
     }
 
     /// The network with the current normals.
@@ -101,6 +105,9 @@ impl Surfacer {
             self.prepared.solve_timings = Default::default();
             if let Some((report, warnings)) = &self.inferred {
                 super::infer::add_to_surface(&mut surface, report, warnings);
+            }
+            if let Some(c) = &self.consolidated {
+                super::add_consolidation(&mut surface, c.clone());
             }
         }
         self.solves += 1;

@@ -53,6 +53,7 @@ mod planes;
 pub mod principal;
 mod sections;
 mod streamlines;
+pub mod strokes;
 
 pub use creases::{CREASE_CORNER_DEG, MIN_CREASE_SPACINGS};
 pub use cut::SHARP_TURN_DEG;

@@ -1,8 +1,10 @@
-//! Topology of the network: where curves meet ([`nodes`]) and which cycles of segments bound
+//! Topology of the network: raw strokes consolidated into curves that meet ([`consolidate`]),
+//! where curves meet ([`nodes`]) and which cycles of segments bound
 //! the patches of the surface ([`cycles`], \[CG\] §3.2); dangling parts of open networks are
 //! trimmed first ([`open`]); the normals of curves that come without them are inferred
 //! ([`orient`]); the mesh is cut open along crease curves for the solve ([`creases`]).
 
+pub mod consolidate;
 pub mod creases;
 pub mod cycles;
 pub mod nodes;

@@ -1,0 +1,174 @@
+//! The strokes as dense polylines: every input edge cut into pieces no longer than `h` (a
+//! quarter of the gap), the points on the input polyline itself (linear, so that a junction
+//! found on a dense stroke lies on the curve as written), in one spatial hash.
+//!
+//! The stages of consolidation work on *pieces*: lists of dense points in order along a
+//! stroke. A stroke starts as one piece; overdraw removes stretches of it (splitting it), jitter
+//! trimming and gap closing cut its ends back.
+
+use crate::geom::{grid_cell, DVec3, GridCell};
+use crate::network::Curve;
+use std::collections::HashMap;
+
+/// The dense points of every curve of a network, and the hash that finds them.
+pub(super) struct Dense {
+    /// Positions (moved by the averaging of overdrawn stretches).
+    pub(super) pos: Vec<DVec3>,
+    /// Normals (zero where the curve has none).
+    pub(super) nrm: Vec<DVec3>,
+    /// Unit tangents (along the curve's sample order).
+    pub(super) tan: Vec<DVec3>,
+    /// Arc length from the curve's first sample.
+    pub(super) arc: Vec<f64>,
+    /// The curve of each point.
+    pub(super) curve: Vec<u32>,
+    /// The point is one of the input samples (not a point inserted on an edge).
+    pub(super) sample: Vec<bool>,
+    /// Per curve: its points are `range.0..range.1`.
+    pub(super) ranges: Vec<(usize, usize)>,
+    /// Per curve: it is closed, and its length.
+    pub(super) closed: Vec<bool>,
+    pub(super) length: Vec<f64>,
+    /// The largest distance between two consecutive points.
+    pub(super) h: f64,
+    /// Cell side of the hash.
+    cell: f64,
+    grid: HashMap<GridCell, Vec<u32>>,
+}
+
+impl Dense {
+    /// The dense points of `curves`, at most `h` apart along them, hashed in cells of side
+    /// `cell`.
+    pub(super) fn new(curves: &[Curve], h: f64, cell: f64) -> Self {
+        let mut d = Dense {
+            pos: Vec::new(),
+            nrm: Vec::new(),
+            tan: Vec::new(),
+            arc: Vec::new(),
+            curve: Vec::new(),
+            sample: Vec::new(),
+            ranges: Vec::new(),
+            closed: Vec::new(),
+            length: Vec::new(),
+            h,
+            cell,
+            grid: HashMap::new(),
+        };
+        for (c, curve) in curves.iter().enumerate() {
+            let start = d.pos.len();
+            let p = &curve.points;
+            let n = p.len();
+            let edges = if curve.closed { n } else { n - 1 };
+            let mut arc = 0.0;
+            for i in 0..edges {
+                let (a, b) = (p[i], p[(i + 1) % n]);
+                let normal = |s: f64| {
+                    if curve.has_normals() {
+                        curve.mean_normal(i).lerp(curve.mean_normal((i + 1) % n), s).normalize_or_zero()
+                    } else {
+                        DVec3::ZERO
+                    }
+                };
+                let len = a.distance(b);
+                let pieces = ((len / h).ceil() as usize).max(1);
+                for k in 0..pieces {
+                    let s = k as f64 / pieces as f64;
+                    d.pos.push(a.lerp(b, s));
+                    d.nrm.push(normal(s));
+                    d.arc.push(arc + s * len);
+                    d.curve.push(c as u32);
+                    d.sample.push(k == 0);
+                }
+                arc += len;
+            }
+            if !curve.closed {
+                d.pos.push(p[n - 1]);
+                d.nrm.push(if curve.has_normals() {
+                    curve.mean_normal(n - 1).normalize_or_zero()
+                } else {
+                    DVec3::ZERO
+                });
+                d.arc.push(arc);
+                d.curve.push(c as u32);
+                d.sample.push(true);
+            }
+            d.ranges.push((start, d.pos.len()));
+            d.closed.push(curve.closed);
+            d.length.push(arc);
+        }
+        d.tan = (0..d.pos.len()).map(|i| d.tangent_at(i)).collect();
+        for (i, &p) in d.pos.iter().enumerate() {
+            d.grid.entry(grid_cell(p, cell)).or_default().push(i as u32);
+        }
+        d
+    }
+
+    /// The point after `i` on its curve (wrapping on a closed curve), if any.
+    pub(super) fn next(&self, i: usize) -> Option<usize> {
+        let (s, e) = self.ranges[self.curve[i] as usize];
+        if i + 1 < e {
+            Some(i + 1)
+        } else if self.closed[self.curve[i] as usize] {
+            Some(s)
+        } else {
+            None
+        }
+    }
+
+    /// The point before `i` on its curve (wrapping on a closed curve), if any.
+    pub(super) fn prev(&self, i: usize) -> Option<usize> {
+        let (s, e) = self.ranges[self.curve[i] as usize];
+        if i > s {
+            Some(i - 1)
+        } else if self.closed[self.curve[i] as usize] {
+            Some(e - 1)
+        } else {
+            None
+        }
+    }
+
+    fn tangent_at(&self, i: usize) -> DVec3 {
+        let a = self.prev(i).map_or(self.pos[i], |j| self.pos[j]);
+        let b = self.next(i).map_or(self.pos[i], |j| self.pos[j]);
+        (b - a).normalize_or_zero()
+    }
+
+    /// Distance along their curve between points `i` and `j` (the shorter way on a loop).
+    pub(super) fn along(&self, i: usize, j: usize) -> f64 {
+        let c = self.curve[i] as usize;
+        let d = (self.arc[i] - self.arc[j]).abs();
+        if self.closed[c] {
+            d.min(self.length[c] - d)
+        } else {
+            d
+        }
+    }
+
+    /// Calls `f(j)` for every dense point `j` within `r` of `p` (`r` at most the cell side).
+    pub(super) fn near(&self, p: DVec3, r: f64, mut f: impl FnMut(usize)) {
+        let c = grid_cell(p, self.cell);
+        let k = (r / self.cell).ceil().max(1.0) as i64;
+        for dx in -k..=k {
+            for dy in -k..=k {
+                for dz in -k..=k {
+                    if let Some(list) = self.grid.get(&(c.0 + dx, c.1 + dy, c.2 + dz)) {
+                        for &j in list {
+                            if self.pos[j as usize].distance_squared(p) <= r * r {
+                                f(j as usize);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Recomputes the tangents and the hash (after positions moved).
+    pub(super) fn retangent(&mut self) {
+        self.tan = (0..self.pos.len()).map(|i| self.tangent_at(i)).collect();
+        self.grid.clear();
+        for (i, &p) in self.pos.iter().enumerate() {
+            self.grid.entry(grid_cell(p, self.cell)).or_default().push(i as u32);
+        }
+    }
+}

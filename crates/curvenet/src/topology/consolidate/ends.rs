@@ -1,0 +1,230 @@
+//! Stroke ends: jitter trimmed (hooks and tiny loops), then gaps closed — an end that stops
+//! short of another stroke, or overshoots it, within the gap becomes a junction on it (a T or an
+//! X), and two ends that nearly meet become one corner (an L), or close their stroke (a loop).
+//!
+//! An end is looked at over its *window*, the last gap of arc length of its piece. For each
+//! window point the nearest point of the other pieces (or of the same piece, more than four
+//! gaps along it) is found in the dense hash. An end already within the snapping tolerance of
+//! another stroke meets it (node finding joins them): left as drawn. Where the window comes
+//! closest inside (an overshoot: the stroke passed the other one), the stub beyond is cut and
+//! the end set on the other stroke; otherwise an end within the gap is extended to the nearest
+//! point. A junction that lands within the window of the other stroke's own free end is that
+//! end's too (an L-corner, or the loop of a stroke whose ends nearly meet).
+
+use super::dense::Dense;
+use super::Piece;
+use crate::geom::DVec3;
+
+/// A point of a piece's dense polyline nearest to a query: its distance, position, piece, and
+/// the dense point at the segment's nearer end.
+#[derive(Clone, Copy)]
+struct Near {
+    dist: f64,
+    q: DVec3,
+    piece: usize,
+    k: usize,
+}
+
+/// Where each dense point sits: `(piece, position in it)`.
+struct Slots(Vec<Option<(u32, u32)>>);
+
+impl Slots {
+    fn new(n: usize, pieces: &[Piece]) -> Self {
+        let mut s = Slots(vec![None; n]);
+        for p in 0..pieces.len() {
+            s.set(pieces, p);
+        }
+        s
+    }
+
+    fn set(&mut self, pieces: &[Piece], p: usize) {
+        for (k, &j) in pieces[p].idx.iter().enumerate() {
+            self.0[j] = Some((p as u32, k as u32));
+        }
+    }
+
+    fn clear(&mut self, idx: &[usize]) {
+        idx.iter().for_each(|&j| self.0[j] = None);
+    }
+}
+
+/// Cuts the hooks and tiny loops at the ends of the open pieces at least three gaps long:
+/// within the last gap of arc length, the innermost point after which the stroke runs more
+/// than 90° away from its body's direction (that of the stretch one to two gaps from the end)
+/// becomes the end. Returns `(curve, where)` per end trimmed.
+pub(super) fn trim_hooks(d: &Dense, pieces: &mut [Piece], gap: f64) -> Vec<(usize, DVec3)> {
+    let mut out = Vec::new();
+    for piece in pieces.iter_mut() {
+        if piece.closed || piece.length(d) < 3.0 * gap {
+            continue;
+        }
+        for side in 0..2 {
+            let seq: Vec<usize> = if side == 0 { piece.idx.clone() } else { piece.idx.iter().rev().copied().collect() };
+            let at = |s: f64| seq.iter().copied().find(|&j| d.along(seq[0], j) >= s).unwrap_or(seq[seq.len() - 1]);
+            let body = (d.pos[at(gap)] - d.pos[at(2.0 * gap)]).normalize_or_zero();
+            let mut cut = None;
+            for k in 1..seq.len() {
+                if d.along(seq[0], seq[k]) > gap {
+                    break;
+                }
+                if (d.pos[seq[k - 1]] - d.pos[seq[k]]).dot(body) < 0.0 {
+                    cut = Some(k);
+                }
+            }
+            if let Some(k) = cut {
+                out.push((piece.curve, d.pos[seq[0]]));
+                if side == 0 {
+                    piece.idx.drain(..k);
+                } else {
+                    let len = piece.idx.len();
+                    piece.idx.truncate(len - k);
+                }
+                piece.changed = true;
+            }
+        }
+    }
+    out
+}
+
+/// What gap closing did: `(curve, curve joined, where)` per end joined, `(curve, where)` per
+/// stub cut.
+pub(super) struct Gaps {
+    pub(super) joins: Vec<(usize, usize, DVec3)>,
+    pub(super) stubs: Vec<(usize, DVec3)>,
+}
+
+/// Closes the gaps at the free ends of the open `pieces` (see the module documentation):
+/// within `gap`, ends within `snap` of another stroke left as they are. `fixed[c]`: the ends of
+/// curve `c` are not moved (a crease).
+pub(super) fn close_gaps(d: &Dense, pieces: &mut [Piece], gap: f64, snap: f64, fixed: &[bool]) -> Gaps {
+    let mut slots = Slots::new(d.pos.len(), pieces);
+    let mut out = Gaps { joins: Vec::new(), stubs: Vec::new() };
+    for p in 0..pieces.len() {
+        for side in 0..2 {
+            if pieces[p].closed || pieces[p].joined[side] || fixed[pieces[p].curve] || pieces[p].idx.len() < 2 {
+                continue;
+            }
+            let seq: Vec<usize> = window(d, &pieces[p], side, gap);
+            let hits: Vec<Option<Near>> =
+                seq.iter().map(|&k| nearest(d, pieces, &slots, p, pieces[p].idx[k], gap)).collect();
+            let first = hits[0].map_or(f64::INFINITY, |h| h.dist);
+            if first <= snap {
+                pieces[p].joined[side] = true;
+                continue;
+            }
+            let best =
+                (0..hits.len()).filter_map(|k| hits[k].map(|h| (k, h))).min_by(|a, b| a.1.dist.total_cmp(&b.1.dist));
+            let Some((kmin, hit)) = best else { continue };
+            let overshoot = kmin > 0 && hit.dist <= (0.5 * gap).min(0.5 * first);
+            let (hit, cut) = if overshoot {
+                (hit, Some(seq[kmin]))
+            } else if let Some(h) = hits[0] {
+                (h, None)
+            } else {
+                continue;
+            };
+            slots.clear(&pieces[p].idx);
+            if let Some(k) = cut {
+                out.stubs.push((pieces[p].curve, d.pos[pieces[p].idx[seq[0]]]));
+                pieces[p].cut_to(side, k);
+            }
+            pieces[p].end_at(d, side, hit.q, 2.0 * snap);
+            slots.set(pieces, p);
+            out.joins.push((pieces[p].curve, pieces[hit.piece].curve, hit.q));
+            corner(d, pieces, &mut slots, p, hit, gap, snap, &mut out);
+        }
+    }
+    out
+}
+
+/// A junction `hit` made by an end of piece `p` that lands within the window of a free end of
+/// the piece it lands on: that end is cut back to the junction and ends there too (an
+/// L-corner); on `p` itself, the piece is closed (a loop).
+#[allow(clippy::too_many_arguments)]
+fn corner(
+    d: &Dense,
+    pieces: &mut [Piece],
+    slots: &mut Slots,
+    p: usize,
+    hit: Near,
+    gap: f64,
+    snap: f64,
+    out: &mut Gaps,
+) {
+    let t = hit.piece;
+    if pieces[t].closed {
+        return;
+    }
+    for side in 0..2 {
+        if t == p && pieces[p].ends[side].is_some() {
+            continue; // the end that made the junction
+        }
+        if pieces[t].joined[side] {
+            continue;
+        }
+        let end = if side == 0 { pieces[t].idx[0] } else { pieces[t].idx[pieces[t].idx.len() - 1] };
+        let j = hit.k;
+        let Some(k) = pieces[t].idx.iter().position(|&i| i == j) else { return };
+        if d.along(end, j) > gap || pieces[t].idx.len() < 3 {
+            continue;
+        }
+        slots.clear(&pieces[t].idx);
+        if d.along(end, j) > 0.0 {
+            out.stubs.push((pieces[t].curve, d.pos[end]));
+        }
+        pieces[t].cut_to(side, k);
+        pieces[t].changed = true;
+        pieces[t].joined[side] = true;
+        if t == p {
+            pieces[t].closed = true;
+        } else {
+            pieces[t].end_at(d, side, hit.q, 2.0 * snap);
+        }
+        slots.set(pieces, t);
+        return;
+    }
+}
+
+/// The positions in piece `p`'s list of its window at `side` (0: its first point, 1: its
+/// last), from the end inward, at most the gap along it and leaving two points.
+fn window(d: &Dense, piece: &Piece, side: usize, gap: f64) -> Vec<usize> {
+    let n = piece.idx.len();
+    let pos = |k: usize| if side == 0 { k } else { n - 1 - k };
+    let end = piece.idx[pos(0)];
+    (0..n.saturating_sub(1)).map(pos).take_while(|&k| d.along(end, piece.idx[k]) <= gap).collect()
+}
+
+/// The nearest point within `r` of dense point `i` (of piece `p`) on the other pieces' dense
+/// polylines, or on `p`'s own more than four `r` along it.
+fn nearest(d: &Dense, pieces: &[Piece], slots: &Slots, p: usize, i: usize, r: f64) -> Option<Near> {
+    let x = d.pos[i];
+    let mut best: Option<Near> = None;
+    d.near(x, r + d.h, |j| {
+        let Some((t, k)) = slots.0[j] else { return };
+        let (t, k) = (t as usize, k as usize);
+        if t == p && d.along(i, j) <= 4.0 * r {
+            return;
+        }
+        let idx = &pieces[t].idx;
+        let mut consider = |k0: usize, k1: usize| {
+            let (a, b) = (d.pos[idx[k0]], d.pos[idx[k1]]);
+            let ab = b - a;
+            let s =
+                if ab.length_squared() > 0.0 { ((x - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+            let q = a + s * ab;
+            let dist = q.distance(x);
+            if dist <= r && best.is_none_or(|b| dist < b.dist) {
+                best = Some(Near { dist, q, piece: t, k: idx[if s < 0.5 { k0 } else { k1 }] });
+            }
+        };
+        if k + 1 < idx.len() {
+            consider(k, k + 1);
+        } else if pieces[t].closed && idx.len() > 2 {
+            consider(k, 0);
+        }
+        if k > 0 {
+            consider(k - 1, k);
+        }
+    });
+    best
+}

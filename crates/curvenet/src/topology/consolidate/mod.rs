@@ -1,0 +1,387 @@
+//! Consolidation: raw strokes as people draw them, made into a network whose curves meet —
+//! the stage before node finding (docs/design.md §14). A 3D sketch's strokes nearly meet but
+//! share no point, overshoot one another, are drawn twice or retraced, and jitter at their
+//! ends; node finding ([`super::nodes`]) joins curves only within the snapping tolerance and
+//! refuses curves that run along each other. Within a larger tolerance, the *gap*:
+//!
+//! 1. **Overdraw** (`overdraw.rs`): stretches of strokes that run along each other become one
+//!    curve, their positions (and normals where given) averaged.
+//! 2. **Jitter** (`ends.rs`): hooks and tiny loops at stroke ends are cut.
+//! 3. **Gaps** (`ends.rs`): an end that stops short of a stroke or overshoots it becomes a
+//!    junction on it (T, X); two ends that nearly meet, a corner (L) or a closed loop.
+//!
+//! The strokes are worked on as dense polylines (`dense.rs`: points at most a quarter of the gap
+//! apart, on the input polylines, in one spatial hash): O(n) hash queries of a bounded
+//! neighbourhood each. A network in which nothing is within reach of these rules — every
+//! curve end on another curve or free beyond the gap, no overdraw — comes back exactly as it
+//! was given (clean networks and every network with shared crossings are not touched).
+//!
+//! The default gap follows the sketch, not its units: [`GAP_OVER_P90`] times the 90th
+//! percentile of the distances from a stroke end to the nearest other stroke, between
+//! [`MIN_GAP`] and [`MAX_GAP`] of the bounding-box diagonal (and at least twice the snapping
+//! tolerance).
+
+mod dense;
+mod ends;
+mod overdraw;
+
+use crate::error::{Result, Warning};
+use crate::geom::{fmt_point, DVec3};
+use crate::network::{curve_label, Curve, Network};
+use crate::solve::timing::{seconds_since, Instant};
+use dense::Dense;
+use serde::Serialize;
+
+/// Smallest default gap, relative to the bounding-box diagonal.
+pub const MIN_GAP: f64 = 0.005;
+/// Largest default gap, relative to the bounding-box diagonal.
+pub const MAX_GAP: f64 = 0.02;
+/// Overdraw band: strokes within this fraction of the gap of each other, running the same way,
+/// are one stroke drawn twice.
+pub const OVERDRAW_BAND: f64 = 0.5;
+/// The default gap over the 90th percentile of the stroke ends' distances to other strokes.
+pub const GAP_OVER_P90: f64 = 1.25;
+/// At most this many dense points (the spacing grows on very large networks).
+const MAX_DENSE_POINTS: f64 = 4e6;
+
+/// The consolidation options (`consolidate`, `gap`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConsolidateOptions {
+    /// `consolidate`: run the stage (default on).
+    pub enabled: bool,
+    /// `gap`: the tolerance (a distance). `None`: from the sketch (module documentation).
+    pub gap: Option<f64>,
+}
+
+impl Default for ConsolidateOptions {
+    fn default() -> Self {
+        ConsolidateOptions { enabled: true, gap: None }
+    }
+}
+
+/// What consolidation did (the `consolidation` of `--stats`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Consolidation {
+    /// The gap tolerance used.
+    pub gap: f64,
+    /// Stroke ends joined to another stroke (T, X, L junctions, loops closed).
+    pub joined: usize,
+    /// Overdrawn stretches merged into the stroke they run along.
+    pub merged: usize,
+    /// Hooks, loops and stubs cut from stroke ends, and remnants left out.
+    pub trimmed: usize,
+    /// Curves in and out.
+    pub curves_in: usize,
+    /// Curves after consolidation.
+    pub curves_out: usize,
+    /// Seconds.
+    pub seconds: f64,
+}
+
+/// A consolidated network.
+#[derive(Clone, Debug)]
+pub struct Consolidated {
+    /// The network (the input itself when nothing was changed).
+    pub network: Network,
+    /// What was done.
+    pub report: Consolidation,
+    /// One warning per kind of change, with places.
+    pub warnings: Vec<Warning>,
+}
+
+impl Consolidated {
+    /// Something was changed.
+    pub fn changed(&self) -> bool {
+        let r = &self.report;
+        r.joined + r.merged + r.trimmed > 0
+    }
+}
+
+/// A stretch of a stroke being consolidated: dense points in order, an added point at either
+/// end (a junction on another stroke), and what happened to it.
+pub(super) struct Piece {
+    pub(super) curve: usize,
+    pub(super) idx: Vec<usize>,
+    pub(super) closed: bool,
+    pub(super) ends: [Option<DVec3>; 2],
+    pub(super) joined: [bool; 2],
+    pub(super) changed: bool,
+}
+
+impl Piece {
+    fn new(curve: usize, idx: Vec<usize>, closed: bool) -> Self {
+        Piece { curve, idx, closed, ends: [None; 2], joined: [false; 2], changed: false }
+    }
+
+    fn length(&self, d: &Dense) -> f64 {
+        self.idx.windows(2).map(|w| d.pos[w[0]].distance(d.pos[w[1]])).sum()
+    }
+
+    /// Ends the piece's `side` at the junction `q` (on another stroke), dropping the end
+    /// points within `near` of it (node finding would see them as a second meeting there) and
+    /// those where the way to `q` turns back by more than 90° (what is left of a hook).
+    fn end_at(&mut self, d: &Dense, side: usize, q: DVec3, near: f64) {
+        while self.idx.len() > 2 {
+            let n = self.idx.len();
+            let (j, k) = if side == 0 { (self.idx[0], self.idx[1]) } else { (self.idx[n - 1], self.idx[n - 2]) };
+            let folds = (q - d.pos[j]).dot(d.pos[j] - d.pos[k]) < 0.0;
+            if d.pos[j].distance(q) > near && !folds {
+                break;
+            }
+            if side == 0 {
+                self.idx.remove(0);
+            } else {
+                self.idx.pop();
+            }
+        }
+        self.ends[side] = Some(q);
+        self.joined[side] = true;
+        self.changed = true;
+    }
+
+    /// Cuts the piece so that its `side` end (0 first, 1 last) is at position `k`.
+    fn cut_to(&mut self, side: usize, k: usize) {
+        if side == 0 {
+            self.idx.drain(..k);
+        } else {
+            self.idx.truncate(k + 1);
+        }
+    }
+}
+
+/// Consolidates the strokes of `network` (see the module documentation); `snap` the
+/// snapping tolerance of the run (`None`: the network's). Errors: those of
+/// [`Network::validated`].
+pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option<f64>) -> Result<Consolidated> {
+    let start = Instant::now();
+    let unchanged = |gap: f64| Consolidated {
+        network: network.clone(),
+        report: Consolidation {
+            gap,
+            curves_in: network.curves.len(),
+            curves_out: network.curves.len(),
+            seconds: seconds_since(start),
+            ..Default::default()
+        },
+        warnings: Vec::new(),
+    };
+    if !options.enabled {
+        return Ok(unchanged(0.0));
+    }
+    let (net, _) = network.validated()?;
+    let snap = snap.or(net.snap).unwrap_or_else(|| net.snap_tolerance());
+    let diag = net.bounding_box().diagonal();
+    let total: f64 = net.curves.iter().map(curve_length).sum();
+    let spacing = |gap: f64| (0.25 * gap).max(total / MAX_DENSE_POINTS);
+    let gap = match options.gap {
+        Some(g) => g,
+        None => {
+            let probe = Dense::new(&net.curves, spacing(MAX_GAP * diag), MAX_GAP * diag);
+            default_gap(&probe, &net.curves, diag, snap)
+        }
+    };
+    if !(gap > snap) {
+        return Ok(unchanged(gap));
+    }
+    let mut d = Dense::new(&net.curves, spacing(gap), gap);
+    let fixed: Vec<bool> = net.curves.iter().map(Curve::is_crease).collect();
+    let od = overdraw::merge_overdraw(&mut d, OVERDRAW_BAND * gap, gap, &fixed);
+    let mut pieces = od.pieces;
+    let hooks = ends::trim_hooks(&d, &mut pieces, gap);
+    let gaps = ends::close_gaps(&d, &mut pieces, gap, snap, &fixed);
+    if od.merges.is_empty() && od.dropped == 0 && hooks.is_empty() && gaps.joins.is_empty() && gaps.stubs.is_empty() {
+        return Ok(unchanged(gap));
+    }
+    let curves = emit(&d, &net.curves, &pieces, &od.moved);
+    let labels: Vec<String> = (0..net.curves.len()).map(|i| curve_label(&net.curves, i)).collect();
+    let warnings = warnings(&labels, &od.merges, &hooks, &gaps, od.dropped, gap);
+    let report = Consolidation {
+        gap,
+        joined: gaps.joins.len(),
+        merged: od.merges.len(),
+        trimmed: hooks.len() + gaps.stubs.len() + od.dropped,
+        curves_in: net.curves.len(),
+        curves_out: curves.len(),
+        seconds: 0.0,
+    };
+    let network = Network { curves, snap: Some(snap) };
+    let report = Consolidation { seconds: seconds_since(start), ..report };
+    Ok(Consolidated { network, report, warnings })
+}
+
+fn curve_length(c: &Curve) -> f64 {
+    let n = c.points.len();
+    let m = if c.closed { n } else { n.saturating_sub(1) };
+    (0..m).map(|i| c.points[i].distance(c.points[(i + 1) % n])).sum()
+}
+
+/// [`GAP_OVER_P90`] times the 90th percentile of the distances from an open curve's end to the
+/// nearest other curve (or the same curve four gaps along it; capped at [`MAX_GAP`] of the
+/// diagonal), between [`MIN_GAP`] and [`MAX_GAP`] of it and at least twice `snap`: nearly
+/// every end of a sketch is meant to meet a stroke, detail strokes aside.
+fn default_gap(d: &Dense, curves: &[Curve], diag: f64, snap: f64) -> f64 {
+    let reach = MAX_GAP * diag;
+    let mut dists: Vec<f64> = Vec::new();
+    for (c, curve) in curves.iter().enumerate() {
+        if curve.closed {
+            continue;
+        }
+        let (s, e) = d.ranges[c];
+        for end in [s, e - 1] {
+            let mut best = reach;
+            d.near(d.pos[end], reach, |j| {
+                if d.curve[j] as usize != c || d.along(end, j) > 4.0 * reach {
+                    best = best.min(d.pos[j].distance(d.pos[end]));
+                }
+            });
+            dists.push(best);
+        }
+    }
+    if dists.is_empty() {
+        return (MIN_GAP * diag).max(2.0 * snap);
+    }
+    dists.sort_by(f64::total_cmp);
+    let p90 = dists[(dists.len() * 9 / 10).min(dists.len() - 1)];
+    (GAP_OVER_P90 * p90).clamp(MIN_GAP * diag, MAX_GAP * diag).max(2.0 * snap)
+}
+
+/// The consolidated curves: an untouched curve as it was given; each piece of a changed one
+/// with its input samples, the points it gained (junctions, cut ends) and its averaged points.
+fn emit(d: &Dense, input: &[Curve], pieces: &[Piece], moved: &[bool]) -> Vec<Curve> {
+    let mut out = Vec::new();
+    let mut k = 0;
+    for (c, curve) in input.iter().enumerate() {
+        let mine: Vec<&Piece> = pieces[k..].iter().take_while(|p| p.curve == c).collect();
+        k += mine.len();
+        let (s, e) = d.ranges[c];
+        let whole = mine.len() == 1
+            && !mine[0].changed
+            && mine[0].closed == curve.closed
+            && mine[0].idx.len() == e - s
+            && !mine[0].idx.iter().any(|&j| moved[j]);
+        if whole {
+            out.push(curve.clone());
+            continue;
+        }
+        let base = curve.name.clone().unwrap_or_else(|| format!("input curve {c}"));
+        let many = mine.len() > 1;
+        for (n, p) in mine.iter().enumerate() {
+            let keep = |t: usize, j: usize| t == 0 || t + 1 == p.idx.len() || d.sample[j] || moved[j];
+            let mut pts: Vec<DVec3> = Vec::new();
+            let mut nrm: Vec<DVec3> = Vec::new();
+            let first = p.idx[0];
+            let last = p.idx[p.idx.len() - 1];
+            if let Some(q) = p.ends[0] {
+                pts.push(q);
+                nrm.push(d.nrm[first]);
+            }
+            for (t, &j) in p.idx.iter().enumerate() {
+                if keep(t, j) {
+                    pts.push(d.pos[j]);
+                    nrm.push(d.nrm[j]);
+                }
+            }
+            if let Some(q) = p.ends[1] {
+                pts.push(q);
+                nrm.push(d.nrm[last]);
+            }
+            pts.dedup_by(|a, b| a.distance(*b) == 0.0);
+            if pts.len() < 2 || (p.closed && pts.len() < 3) {
+                continue;
+            }
+            let normals = if curve.has_normals() && nrm.len() == pts.len() { nrm } else { Vec::new() };
+            let name = if many { format!("{base} part {}", n + 1) } else { base.clone() };
+            out.push(Curve {
+                name: Some(name),
+                points: pts,
+                normals,
+                normals_right: Vec::new(),
+                closed: p.closed,
+                boundary: curve.boundary,
+            });
+        }
+    }
+    out
+}
+
+/// One warning per kind of change, naming the first few places.
+fn warnings(
+    labels: &[String],
+    merges: &[overdraw::Merge],
+    hooks: &[(usize, DVec3)],
+    gaps: &ends::Gaps,
+    dropped: usize,
+    gap: f64,
+) -> Vec<Warning> {
+    let list = |items: Vec<(usize, String)>| -> (String, Option<usize>) {
+        let shown: Vec<String> = items.iter().take(3).map(|x| x.1.clone()).collect();
+        let more = if items.len() > 3 { format!(" and {} more", items.len() - 3) } else { String::new() };
+        (format!("{}{more}", shown.join("; ")), items.first().map(|x| x.0))
+    };
+    let mut out = Vec::new();
+    let mut push = |text: String, first: Option<usize>| {
+        let w = Warning::new(text);
+        out.push(match first {
+            Some(c) => w.curve(c),
+            None => w,
+        });
+    };
+    if !gaps.joins.is_empty() {
+        let (places, first) = list(
+            gaps.joins
+                .iter()
+                .map(|&(c, t, q)| (c, format!("{} onto {} at {}", labels[c], labels[t], fmt_point(q))))
+                .collect(),
+        );
+        push(
+            format!(
+                "consolidation: {} stroke end(s) that stopped short of or overshot another stroke within the gap \
+                 ({gap:.3e}) were joined to it: {places} (`consolidate = off` keeps the strokes as drawn)",
+                gaps.joins.len()
+            ),
+            first,
+        );
+    }
+    if !merges.is_empty() {
+        let (places, first) = list(
+            merges
+                .iter()
+                .map(|m| {
+                    let onto = if m.onto == m.curve { "itself".to_string() } else { labels[m.onto].clone() };
+                    (
+                        m.curve,
+                        format!("{} along {onto} near {} ({:.3e} long)", labels[m.curve], fmt_point(m.at), m.length),
+                    )
+                })
+                .collect(),
+        );
+        push(
+            format!(
+                "consolidation: {} overdrawn stretch(es) (strokes drawn twice, retraced or along another within \
+                 {:.3e}) were merged into one curve, their positions averaged: {places}",
+                merges.len(),
+                OVERDRAW_BAND * gap
+            ),
+            first,
+        );
+    }
+    let trims = hooks.len() + gaps.stubs.len() + dropped;
+    if trims > 0 {
+        let items: Vec<(usize, String)> =
+            hooks.iter().chain(&gaps.stubs).map(|&(c, q)| (c, format!("{} at {}", labels[c], fmt_point(q)))).collect();
+        let (places, first) = list(items);
+        push(
+            format!(
+                "consolidation: {trims} hook(s), loop(s) and stub(s) shorter than the gap ({gap:.3e}) were trimmed from \
+                 stroke ends{}{places}",
+                if places.is_empty() { String::new() } else { ": ".to_string() }
+            ),
+            first,
+        );
+    }
+    out
+}
+
+#[cfg(test)]
+#[path = "tests/consolidate.rs"]
+mod tests;

@@ -1,0 +1,258 @@
+//! Overdraw: strokes, or stretches of strokes, drawn along each other (a stroke drawn twice, a
+//! stroke retraced back over itself, two strokes that share a stretch) become one curve.
+//!
+//! The strokes are visited longest first. A dense point of a stroke is *covered* when a point
+//! kept earlier — of a longer stroke, or of the same stroke further back along it (a retrace)
+//! — lies within the band and runs the same way (tangents within [`PARALLEL_DEGREES`], either
+//! sense). A covered run as long as [`MIN_RUN`] bands is overdraw: it is removed from its
+//! stroke (splitting it), and each of its points is averaged into the point that covered it
+//! (positions, and normals where given). Shorter runs are crossings at a shallow angle, left to
+//! node finding. What remains of a stroke between removed runs becomes its pieces; pieces
+//! shorter than two gaps (or folded within one and a half) are dropped with it.
+
+use super::dense::Dense;
+use super::Piece;
+use crate::geom::DVec3;
+
+/// Tangents of two stretches within this angle (either sense) run along each other.
+pub(super) const PARALLEL_DEGREES: f64 = 20.0;
+
+/// A covered run at least this many bands long is overdraw (shorter ones: a shallow crossing).
+pub(super) const MIN_RUN: f64 = 4.0;
+
+/// One overdrawn stretch: the curve it was on, the curve it was merged into, where, and its
+/// length.
+pub(super) struct Merge {
+    pub(super) curve: usize,
+    pub(super) onto: usize,
+    pub(super) at: DVec3,
+    pub(super) length: f64,
+}
+
+/// What [`merge_overdraw`] made.
+pub(super) struct Overdraw {
+    /// Every curve's pieces, in curve order and along each curve.
+    pub(super) pieces: Vec<Piece>,
+    /// The stretches merged.
+    pub(super) merges: Vec<Merge>,
+    /// Remnants dropped (pieces shorter than the gap between or beside merged runs).
+    pub(super) dropped: usize,
+    /// Per dense point: its position was averaged.
+    pub(super) moved: Vec<bool>,
+}
+
+/// Finds and merges the overdrawn stretches of the curves of `d` (within `band` of each other;
+/// pieces shorter than `gap` dropped). `fixed[c]`: curve `c` is never covered (a crease).
+pub(super) fn merge_overdraw(d: &mut Dense, band: f64, gap: f64, fixed: &[bool]) -> Overdraw {
+    let n = d.pos.len();
+    let curves = d.ranges.len();
+    let mut order: Vec<usize> = (0..curves).collect();
+    order.sort_by(|&a, &b| fixed[b].cmp(&fixed[a]).then(d.length[b].total_cmp(&d.length[a])).then(a.cmp(&b)));
+    let cos_parallel = PARALLEL_DEGREES.to_radians().cos();
+    let mut kept = vec![false; n];
+    let mut cover: Vec<Option<usize>> = vec![None; n];
+    let mut merges = Vec::new();
+    let mut pieces_of: Vec<Vec<Piece>> = (0..curves).map(|_| Vec::new()).collect();
+    let mut dropped = 0;
+    for &c in &order {
+        let (s, e) = d.ranges[c];
+        // Covered points of c: by kept points of earlier curves, or by earlier uncovered points
+        // of c itself far enough back along it.
+        if !fixed[c] {
+            for i in s..e {
+                let mut best: Option<(f64, usize)> = None;
+                d.near(d.pos[i], band, |j| {
+                    let other = d.curve[j] as usize != c;
+                    let ok = if other { kept[j] } else { j < i && cover[j].is_none() && d.along(i, j) > 3.0 * band };
+                    if ok && d.tan[i].dot(d.tan[j]).abs() >= cos_parallel {
+                        let dist = d.pos[i].distance(d.pos[j]);
+                        if best.is_none_or(|b| dist < b.0) {
+                            best = Some((dist, j));
+                        }
+                    }
+                });
+                cover[i] = best.map(|b| b.1);
+            }
+        }
+        let runs = covered_runs(d, c, &cover);
+        for (a, b) in runs {
+            let length = run_length(d, a, b);
+            let idx = run_indices(d, a, b);
+            // A run within two gaps of an open stroke's end (a hook may follow) is that end lying
+            // along another stroke, drawn on past a junction or back to it: overdraw whatever
+            // its length.
+            let (s0, e0) = d.ranges[c];
+            let near_end = |end: usize| idx.iter().any(|&i| d.along(i, end) <= 2.0 * gap);
+            let at_end = !d.closed[c] && (near_end(s0) || near_end(e0 - 1));
+            if (length < MIN_RUN * band && !(at_end && length >= band)) || shares_a_point(d, &idx, &cover, band) {
+                idx.iter().for_each(|&i| cover[i] = None);
+                continue;
+            }
+            let mut onto: Vec<usize> = idx.iter().filter_map(|&i| cover[i]).map(|j| d.curve[j] as usize).collect();
+            onto.sort_unstable();
+            let onto = mode(&onto).unwrap_or(c);
+            merges.push(Merge { curve: c, onto, at: d.pos[idx[idx.len() / 2]], length });
+        }
+        for i in s..e {
+            kept[i] = cover[i].is_none();
+        }
+        // The kept runs are the pieces; those shorter than the gap are dropped.
+        let whole = (s..e).all(|i| kept[i]);
+        if whole {
+            pieces_of[c].push(Piece::new(c, (s..e).collect(), d.closed[c]));
+            continue;
+        }
+        for (a, b) in kept_runs(d, c, &kept) {
+            let idx = run_indices(d, a, b);
+            // A remnant beside removed overdraw: short, or folded within a small extent (the
+            // turn of a retrace).
+            let extent = idx.iter().map(|&i| d.pos[i].distance(d.pos[idx[0]])).fold(0.0, f64::max);
+            if run_length(d, a, b) < 2.0 * gap || extent < 1.5 * gap || idx.len() < 2 {
+                idx.iter().for_each(|&i| kept[i] = false);
+                dropped += 1;
+                continue;
+            }
+            pieces_of[c].push(Piece::new(c, idx, false));
+        }
+    }
+    let moved = average_into(d, &cover, &kept);
+    Overdraw { pieces: pieces_of.into_iter().flatten().collect(), merges, dropped, moved }
+}
+
+/// A covered run that shares a point with a curve covering it — a vertex of both, as where
+/// the curves of a neatened graph leave their node at a shallow angle — is a junction, not
+/// overdraw: graphs with shared crossings are left as they are.
+fn shares_a_point(d: &Dense, idx: &[usize], cover: &[Option<usize>], band: f64) -> bool {
+    let exact = 1e-9 * band;
+    let ends = [idx[0], idx[idx.len() - 1]];
+    let around = ends.iter().flat_map(|&i| [d.prev(i), Some(i), d.next(i)]).flatten();
+    let covering: Vec<u32> = idx.iter().filter_map(|&i| cover[i]).map(|j| d.curve[j]).collect();
+    idx.iter().copied().chain(around).any(|i| {
+        let mut shared = false;
+        d.near(d.pos[i], exact, |j| shared |= d.curve[j] != d.curve[i] && covering.contains(&d.curve[j]));
+        shared
+    })
+}
+
+/// The most frequent value of a sorted list.
+fn mode(sorted: &[usize]) -> Option<usize> {
+    let mut best: Option<(usize, usize)> = None;
+    let mut i = 0;
+    while i < sorted.len() {
+        let j = sorted[i..].iter().position(|&x| x != sorted[i]).map_or(sorted.len(), |k| i + k);
+        if best.is_none_or(|b| j - i > b.1) {
+            best = Some((sorted[i], j - i));
+        }
+        i = j;
+    }
+    best.map(|b| b.0)
+}
+
+/// The maximal runs `(first, last)` (inclusive, along the curve; a closed curve's run may wrap
+/// through its first point) of points of curve `c` where `flag` holds.
+fn runs_where(d: &Dense, c: usize, flag: impl Fn(usize) -> bool) -> Vec<(usize, usize)> {
+    let (s, e) = d.ranges[c];
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    let mut i = s;
+    while i < e {
+        if !flag(i) {
+            i += 1;
+            continue;
+        }
+        let mut j = i;
+        while j + 1 < e && flag(j + 1) {
+            j += 1;
+        }
+        runs.push((i, j));
+        i = j + 1;
+    }
+    // A closed curve's run through its seam: the last run continues into the first.
+    if d.closed[c] && runs.len() > 1 {
+        let (first, last) = (runs[0], runs[runs.len() - 1]);
+        if first.0 == s && last.1 == e - 1 {
+            runs.pop();
+            runs[0] = (last.0, first.1);
+        }
+    }
+    runs
+}
+
+fn covered_runs(d: &Dense, c: usize, cover: &[Option<usize>]) -> Vec<(usize, usize)> {
+    runs_where(d, c, |i| cover[i].is_some())
+}
+
+fn kept_runs(d: &Dense, c: usize, kept: &[bool]) -> Vec<(usize, usize)> {
+    runs_where(d, c, |i| kept[i])
+}
+
+/// The points of a run `(a, b)` in order (through the seam of a closed curve when `b < a`).
+pub(super) fn run_indices(d: &Dense, a: usize, b: usize) -> Vec<usize> {
+    let mut out = vec![a];
+    let mut i = a;
+    while i != b {
+        match d.next(i) {
+            Some(j) => i = j,
+            None => break,
+        }
+        out.push(i);
+    }
+    out
+}
+
+/// Arc length of a run.
+fn run_length(d: &Dense, a: usize, b: usize) -> f64 {
+    let idx = run_indices(d, a, b);
+    idx.windows(2).map(|w| d.pos[w[0]].distance(d.pos[w[1]])).sum()
+}
+
+/// Averages every covered point into the point that covers it: the kept point moves halfway
+/// to the mean of the points it covers (each stroke drawn counts once, whatever its sampling),
+/// normals summed where they point to the same side. The kept points between moved ones take
+/// the mean of their neighbours' shifts (a few passes, so that the merged stretch joins the
+/// rest of its curve smoothly). Returns the points moved.
+fn average_into(d: &mut Dense, cover: &[Option<usize>], kept: &[bool]) -> Vec<bool> {
+    let n = d.pos.len();
+    let mut sum = vec![DVec3::ZERO; n];
+    let mut nsum = vec![DVec3::ZERO; n];
+    let mut count = vec![0usize; n];
+    for i in 0..n {
+        if let Some(j) = cover[i] {
+            if !kept[j] {
+                continue;
+            }
+            sum[j] += d.pos[i];
+            count[j] += 1;
+            if d.nrm[i].dot(d.nrm[j]) > 0.0 {
+                nsum[j] += d.nrm[i];
+            }
+        }
+    }
+    let mut shift = vec![DVec3::ZERO; n];
+    let mut moved = vec![false; n];
+    for j in 0..n {
+        if count[j] > 0 {
+            shift[j] = 0.5 * (sum[j] / count[j] as f64 - d.pos[j]);
+            d.nrm[j] = (d.nrm[j] + nsum[j] / count[j] as f64).normalize_or_zero();
+            moved[j] = true;
+        }
+    }
+    for _ in 0..4 {
+        let old = shift.clone();
+        for j in 0..n {
+            if !kept[j] || count[j] > 0 {
+                continue;
+            }
+            let side = |k: Option<usize>| k.filter(|&k| kept[k]).map_or(DVec3::ZERO, |k| old[k]);
+            let s = 0.5 * (side(d.prev(j)) + side(d.next(j)));
+            if s != DVec3::ZERO {
+                shift[j] = s;
+                moved[j] = true;
+            }
+        }
+    }
+    for j in 0..n {
+        d.pos[j] += shift[j];
+    }
+    d.retangent();
+    moved
+}

@@ -1,0 +1,103 @@
+//! Raw strokes (issue 28): clean networks with a known truth redrawn as a hand draws them
+//! ([`curvenet::sampling::strokes`]: gaps and overshoots, strokes drawn twice or retraced,
+//! hooks, uneven spacing), consolidated and surfaced; the distance to the truth, the share of
+//! the strokes the surface passes near, and the raw VR strokes of the CASSIE data set.
+
+use curvenet::geom::DVec3;
+use curvenet::metrics::{distance_to_truth, example_truth};
+use curvenet::network::examples::example;
+use curvenet::sampling::strokes::{as_drawn, Drawn};
+use curvenet::{surface, Network, Options};
+
+fn options() -> Options {
+    Options::default().with_vertices(6000)
+}
+
+/// Surfaces the strokes of example `name` drawn with `drawn`: the RMS distance to the truth
+/// relative to the diagonal and the coverage, or the error.
+fn drawn_example(name: &str, drawn: &Drawn, seed: u64) -> Result<(f64, f64, curvenet::Surface), curvenet::Error> {
+    let net = example(name).unwrap();
+    let strokes = as_drawn(&net, drawn, seed);
+    if let Ok(dir) = std::env::var("CURVENET_DUMP") {
+        let path = std::path::Path::new(&dir).join(format!("{name}-{seed}.json"));
+        curvenet::io::write_network(&path, &strokes).unwrap();
+    }
+    let diag = net.bounding_box().diagonal();
+    let s = surface(&strokes, &options())?;
+    let truth = example_truth(name).unwrap();
+    let d = distance_to_truth(&s.mesh.positions, 0, &truth);
+    Ok((d.rms / diag, s.stats.coverage.unwrap_or(1.0), s))
+}
+
+/// Of `seeds` drawings of example `name`, those that surface within 1 % of the diagonal (RMS)
+/// of the truth and near ≥ 95 % of the strokes (the issue's criterion).
+fn passing(name: &str, drawn: &Drawn, seeds: u64) -> u64 {
+    let mut pass = 0;
+    for seed in 0..seeds {
+        match drawn_example(name, drawn, seed) {
+            Ok((rms, coverage, s)) => {
+                let ok = rms < 0.01 && coverage >= 0.95;
+                eprintln!(
+                    "{name} seed {seed}: rms/diag {rms:.2e}, coverage {coverage:.3}, {:?}",
+                    s.stats.consolidation
+                );
+                pass += ok as u64;
+            }
+            Err(e) => eprintln!("{name} seed {seed}: {e}"),
+        }
+    }
+    eprintln!("{name}: {pass} of {seeds} pass");
+    pass
+}
+
+#[test]
+fn strokes_with_gaps_overdraw_and_hooks_on_the_sphere_surface_near_the_truth() {
+    let (_, _, s) = drawn_example("globe", &Drawn::default(), 0).unwrap();
+    let c = s.stats.consolidation.clone().unwrap();
+    assert!(c.joined > 0 && c.merged > 0 && c.trimmed > 0, "every defect is met: {c:?}");
+    assert!(passing("globe", &Drawn::default(), 10) >= 9);
+}
+
+#[test]
+fn strokes_on_the_torus_surface_near_the_truth() {
+    // Measured: 7 of 10. The others surface with coverage 65–95 % or an RMS of 1.7 % of the
+    // diagonal: strokes of an equator joined into a bridge whose cycles the rotation walk
+    // misreads (a segment with one patch on both sides) — issue 30's global cycle choice.
+    assert!(passing("torus", &Drawn::default(), 10) >= 7);
+}
+
+#[test]
+fn the_same_strokes_are_refused_without_consolidation() {
+    let strokes = as_drawn(&example("globe").unwrap(), &Drawn::default(), 0);
+    let mut o = options();
+    o.consolidate.enabled = false;
+    assert!(surface(&strokes, &o).is_err());
+}
+
+#[test]
+fn a_surface_that_misses_most_of_the_strokes_is_an_error() {
+    // The sphere's three great circles, and far away many strokes that meet nothing.
+    let mut net = example("sphere").unwrap();
+    for k in 0..40 {
+        let y = 3.0 + 0.2 * k as f64;
+        let points: Vec<DVec3> = (0..10).map(|i| DVec3::new(-3.0 + 0.7 * i as f64, y, 0.5 * k as f64)).collect();
+        net.curves.push(curvenet::Curve { points, ..Default::default() });
+    }
+    for c in &mut net.curves {
+        c.normals.clear();
+    }
+    let e = surface(&net, &options()).err().expect("an error, not a surface near a few strokes");
+    assert!(e.to_string().contains("passes near"), "{e}");
+}
+
+#[test]
+fn clean_examples_give_the_same_surface_with_consolidation_on_and_off() {
+    for name in ["sphere", "torus", "cube", "can"] {
+        let net: Network = example(name).unwrap();
+        let mut off = options();
+        off.consolidate.enabled = false;
+        let (a, b) = (surface(&net, &options()).unwrap(), surface(&net, &off).unwrap());
+        assert_eq!(a.mesh.positions, b.mesh.positions, "{name}");
+        assert_eq!(a.mesh.faces, b.mesh.faces, "{name}");
+    }
+}
