@@ -39,6 +39,7 @@ from ._curvenet import (
 )
 
 __all__ = [
+    "consolidate",
     "Error",
     "InputError",
     "Network",
@@ -124,7 +125,8 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     ``soft`` (soft curve constraints, in input sample spacings), ``iterations`` (3D-operator
     iterations, default 2), and the keyword-only ``patching``, ``inner_steps``,
     ``tolerance``, ``normal_prior``, ``energy``, ``guide_area``, ``guide_updates``, ``w1``,
-    ``snap``, ``max_memory`` (bytes or ``"4G"``; a run whose estimated peak exceeds it, or the
+    ``snap``, ``consolidate`` (``"on"``/``"off"``: raw strokes joined, merged and trimmed
+    first, :func:`consolidate`), ``gap`` (its tolerance), ``max_memory`` (bytes or ``"4G"``; a run whose estimated peak exceeds it, or the
     memory available, raises ``MemoryError`` before it starts), ``order``, ``ghost_updates``.
     With ``method="cauchy"`` a network read from JSON
     keeps its per-curve ``kind``, ``sharpness`` and ``stretch``.
@@ -214,6 +216,25 @@ def infer_normals(network, *, all=False, snap=None):
     """
     given = {"infer_normals": "all" if all else "missing", "snap": snap}
     net, report, warnings = _curvenet._infer_normals(network, _options("default", given))
+    warnings = [SurfacingWarning(*w) for w in warnings]
+    for w in warnings:
+        _warnings.warn(w, stacklevel=2)
+    return net, _json.loads(report), warnings
+
+
+def consolidate(network, *, gap=None, snap=None):
+    """The network with its raw strokes consolidated, as :func:`surface` does first.
+
+    Stroke ends that stop short of or overshoot another stroke within ``gap`` become junctions
+    on it, strokes drawn along each other (twice, retraced) become one curve with averaged
+    positions, hooks and stubs at stroke ends are trimmed; a clean network comes back as
+    given. ``gap``: the tolerance (default: from the sketch, 0.5–2 % of its bounding-box
+    diagonal). Returns ``(network, report, warnings)``: the report as ``--stats`` writes it
+    under ``consolidation`` (``gap``, ``joined``, ``merged``, ``trimmed``, …) and a list of
+    :class:`SurfacingWarning`. ``surface(..., consolidate="off")`` skips the stage.
+    """
+    given = {"gap": gap, "snap": snap}
+    net, report, warnings = _curvenet._consolidate(network, _options("default", given))
     warnings = [SurfacingWarning(*w) for w in warnings]
     for w in warnings:
         _warnings.warn(w, stacklevel=2)

@@ -65,6 +65,9 @@ def examples() -> list[Tuple[str, str]]: ...
 def infer_normals(
     network: Network, *, all: bool = False, snap: Optional[float] = None
 ) -> Tuple[Network, dict[str, Any], list[SurfacingWarning]]: ...
+def consolidate(
+    network: Network, *, gap: Optional[float] = None, snap: Optional[float] = None
+) -> Tuple[Network, dict[str, Any], list[SurfacingWarning]]: ...
 def surface(
     network: Network,
     method: Optional[Method] = None,
@@ -84,6 +87,8 @@ def surface(
     guide_area: Optional[Literal["barycentric", "mass", "surface"]] = None,
     guide_updates: Optional[int] = None,
     snap: Optional[float] = None,
+    consolidate: Optional[Literal["on", "off"]] = None,
+    gap: Optional[float] = None,
     max_memory: Union[float, str, None] = None,
     infer_normals: Optional[Union[bool, Literal["missing", "all"]]] = None,
     order: Optional[int] = None,
@@ -124,6 +129,8 @@ class Surfacer:
         guide_area: Optional[Literal["barycentric", "mass", "surface"]] = None,
         guide_updates: Optional[int] = None,
         snap: Optional[float] = None,
+        consolidate: Optional[Literal["on", "off"]] = None,
+        gap: Optional[float] = None,
         max_memory: Union[float, str, None] = None,
     infer_normals: Optional[Union[bool, Literal["missing", "all"]]] = None,
         order: Optional[int] = None,

@@ -429,6 +429,25 @@ fn _infer_normals(
     Ok((PyNetwork { inner: inferred.network, source: network.source.clone() }, report, warnings))
 }
 
+/// The network with its raw strokes consolidated (`curvenet::topology::consolidate`):
+/// `(network, report as JSON, warnings)`.
+#[pyfunction]
+fn _consolidate(
+    py: Python<'_>,
+    network: &PyNetwork,
+    options: &PyOptions,
+) -> PyResult<(PyNetwork, String, Vec<WarningTuple>)> {
+    let net = &network.inner;
+    let opts = &options.inner;
+    let mut c = opts.consolidate;
+    c.enabled = true;
+    let done = py.detach(|| curvenet::topology::consolidate::consolidate(net, &c, opts.mesh.snap)).map_err(err)?;
+    let report = serde_json::to_string(&done.report).map_err(|e| usage(e.to_string()))?;
+    let warnings =
+        done.warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect();
+    Ok((PyNetwork { inner: done.network, source: network.source.clone() }, report, warnings))
+}
+
 /// A network prepared for repeated solves that keeps its mesh and factorisations
 /// (`curvenet::Surfacer`).
 #[pyclass(module = "curvenet._curvenet", name = "_Surfacer")]
@@ -597,6 +616,7 @@ fn _curvenet(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_surface_file, m)?)?;
     m.add_function(wrap_pyfunction!(_plan_files, m)?)?;
     m.add_function(wrap_pyfunction!(_infer_normals, m)?)?;
+    m.add_function(wrap_pyfunction!(_consolidate, m)?)?;
     m.add_function(wrap_pyfunction!(_harmonic, m)?)?;
     m.add_function(wrap_pyfunction!(_eval, m)?)?;
     Ok(())

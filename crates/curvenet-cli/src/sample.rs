@@ -58,6 +58,12 @@ pub struct SampleArgs {
     /// edges then comes back rounded).
     #[arg(long, conflicts_with = "crease_angle")]
     no_creases: bool,
+    /// Redraw the curves as a hand draws them, test data for consolidation with the mesh as its
+    /// truth: strokes that stop short of or overshoot each other by up to GAP (a fraction of
+    /// the bounding-box diagonal, e.g. 0.01), some drawn twice or retraced, hooks at some ends,
+    /// uneven spacing about the sections' own (random by --seed; crease normals are not kept).
+    #[arg(long, value_name = "GAP")]
+    as_drawn: Option<f64>,
 }
 
 fn parse_planes(s: &str) -> Result<[usize; 3], Error> {
@@ -91,6 +97,18 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
     }
     let mesh = read_mesh(&a.mesh)?;
     let (net, r) = sample_mesh(&mesh.positions, &mesh.faces, &opts)?;
+    let net = match a.as_drawn {
+        Some(gap) if !(gap.is_finite() && (0.0..0.2).contains(&gap)) => {
+            return Err(Error::usage(format!("--as-drawn {gap}: give a gap between 0 and 0.2 of the diagonal")));
+        }
+        Some(gap) => {
+            // The strokes' samples as far apart as the sections' (--spacing).
+            let spacing = net.mean_sample_spacing() / net.bounding_box().diagonal();
+            let drawn = curvenet::sampling::strokes::Drawn { gap, spacing, ..Default::default() };
+            curvenet::sampling::strokes::as_drawn(&net, &drawn, a.seed)
+        }
+        None => net,
+    };
     let net = if a.no_normals { net.without_normals() } else { net };
     if net.has_creases() && format != curvenet::io::NetworkFormat::Json {
         return Err(Error::usage(format!(

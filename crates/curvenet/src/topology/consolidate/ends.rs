@@ -48,26 +48,34 @@ impl Slots {
     }
 }
 
-/// Cuts the hooks and tiny loops at the ends of the open pieces at least three gaps long:
-/// within the last gap of arc length, the innermost point after which the stroke runs more
-/// than 90° away from its body's direction (that of the stretch one to two gaps from the end)
+/// Cuts the hooks and tiny loops at the ends of the open pieces: within the last gap of arc
+/// length (a third of a piece shorter than three gaps), the innermost point where the stroke
+/// turns by more than 120°, or (pieces at least three gaps long) after which it runs more than
+/// 90° away from its body's direction (that of the stretch one to two gaps from the end),
 /// becomes the end. Returns `(curve, where)` per end trimmed.
 pub(super) fn trim_hooks(d: &Dense, pieces: &mut [Piece], gap: f64) -> Vec<(usize, DVec3)> {
     let mut out = Vec::new();
     for piece in pieces.iter_mut() {
-        if piece.closed || piece.length(d) < 3.0 * gap {
+        let length = piece.length(d);
+        if piece.closed || piece.idx.len() < 3 {
             continue;
         }
+        // Short pieces: a window of a third of their length, sharp turns only.
+        let (window, body_rule) = if length >= 3.0 * gap { (gap, true) } else { (length / 3.0, false) };
         for side in 0..2 {
             let seq: Vec<usize> = if side == 0 { piece.idx.clone() } else { piece.idx.iter().rev().copied().collect() };
             let at = |s: f64| seq.iter().copied().find(|&j| d.along(seq[0], j) >= s).unwrap_or(seq[seq.len() - 1]);
             let body = (d.pos[at(gap)] - d.pos[at(2.0 * gap)]).normalize_or_zero();
             let mut cut = None;
-            for k in 1..seq.len() {
-                if d.along(seq[0], seq[k]) > gap {
+            for k in 1..seq.len() - 1 {
+                if d.along(seq[0], seq[k]) > window {
                     break;
                 }
-                if (d.pos[seq[k - 1]] - d.pos[seq[k]]).dot(body) < 0.0 {
+                let out_dir = (d.pos[seq[k - 1]] - d.pos[seq[k]]).normalize_or_zero();
+                let in_dir = (d.pos[seq[k]] - d.pos[seq[k + 1]]).normalize_or_zero();
+                // A turn of more than 120° (a hairpin), or, on long pieces, a way back against
+                // the body's direction.
+                if out_dir.dot(in_dir) < -0.5 || (body_rule && out_dir.dot(body) < 0.0) {
                     cut = Some(k);
                 }
             }
@@ -131,7 +139,9 @@ pub(super) fn close_gaps(d: &Dense, pieces: &mut [Piece], gap: f64, snap: f64, f
             pieces[p].end_at(d, side, hit.q, 2.0 * snap);
             slots.set(pieces, p);
             out.joins.push((pieces[p].curve, pieces[hit.piece].curve, hit.q));
-            corner(d, pieces, &mut slots, p, hit, gap, snap, &mut out);
+            if !fixed[pieces[hit.piece].curve] {
+                corner(d, pieces, &mut slots, p, hit, gap, snap, &mut out);
+            }
         }
     }
     out

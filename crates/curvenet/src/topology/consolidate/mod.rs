@@ -184,8 +184,9 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
         return Ok(unchanged(gap));
     }
     let mut d = Dense::new(&net.curves, spacing(gap), gap);
-    let fixed: Vec<bool> = net.curves.iter().map(Curve::is_crease).collect();
-    let od = overdraw::merge_overdraw(&mut d, OVERDRAW_BAND * gap, gap, &fixed);
+    // Creases and boundary curves are the network's own: never merged into another or moved.
+    let fixed: Vec<bool> = net.curves.iter().map(|c| c.is_crease() || c.boundary).collect();
+    let od = overdraw::merge_overdraw(&mut d, OVERDRAW_BAND * gap, gap, snap, &fixed);
     let mut pieces = od.pieces;
     let hooks = ends::trim_hooks(&d, &mut pieces, gap);
     let gaps = ends::close_gaps(&d, &mut pieces, gap, snap, &fixed);
@@ -285,6 +286,7 @@ fn emit(d: &Dense, input: &[Curve], pieces: &[Piece], moved: &[bool]) -> Vec<Cur
                 pts.push(q);
                 nrm.push(d.nrm[last]);
             }
+            unfold_ends(&mut pts, &mut nrm);
             pts.dedup_by(|a, b| a.distance(*b) == 0.0);
             if pts.len() < 2 || (p.closed && pts.len() < 3) {
                 continue;
@@ -302,6 +304,24 @@ fn emit(d: &Dense, input: &[Curve], pieces: &[Piece], moved: &[bool]) -> Vec<Cur
         }
     }
     out
+}
+
+/// Removes the samples next to either end where the curve turns back by more than 120° (a
+/// junction reached by folding back over the last stretch): the end sample itself is kept.
+fn unfold_ends(pts: &mut Vec<DVec3>, nrm: &mut Vec<DVec3>) {
+    for _ in 0..2 {
+        while pts.len() > 2 {
+            let d0 = (pts[0] - pts[1]).normalize_or_zero();
+            let d1 = (pts[1] - pts[2]).normalize_or_zero();
+            if d0.dot(d1) >= -0.5 {
+                break;
+            }
+            pts.remove(1);
+            nrm.remove(1);
+        }
+        pts.reverse();
+        nrm.reverse();
+    }
 }
 
 /// One warning per kind of change, naming the first few places.

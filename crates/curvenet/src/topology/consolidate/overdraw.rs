@@ -17,6 +17,12 @@ use crate::geom::DVec3;
 /// Tangents of two stretches within this angle (either sense) run along each other.
 pub(super) const PARALLEL_DEGREES: f64 = 20.0;
 
+/// Normals (where both stretches carry them) within this angle: one surface drawn twice.
+pub(super) const NORMALS_DEGREES: f64 = 30.0;
+
+/// A covered run whose offset across its cover drifts at more than this angle is a crossing.
+pub(super) const CROSSING_DEGREES: f64 = 8.0;
+
 /// A covered run at least this many bands long is overdraw (shorter ones: a shallow crossing).
 pub(super) const MIN_RUN: f64 = 4.0;
 
@@ -42,13 +48,14 @@ pub(super) struct Overdraw {
 }
 
 /// Finds and merges the overdrawn stretches of the curves of `d` (within `band` of each other;
-/// pieces shorter than `gap` dropped). `fixed[c]`: curve `c` is never covered (a crease).
-pub(super) fn merge_overdraw(d: &mut Dense, band: f64, gap: f64, fixed: &[bool]) -> Overdraw {
+/// pieces shorter than `gap` dropped). `fixed[c]`: curve `c` is never covered (a crease or a boundary).
+pub(super) fn merge_overdraw(d: &mut Dense, band: f64, gap: f64, snap: f64, fixed: &[bool]) -> Overdraw {
     let n = d.pos.len();
     let curves = d.ranges.len();
     let mut order: Vec<usize> = (0..curves).collect();
     order.sort_by(|&a, &b| fixed[b].cmp(&fixed[a]).then(d.length[b].total_cmp(&d.length[a])).then(a.cmp(&b)));
     let cos_parallel = PARALLEL_DEGREES.to_radians().cos();
+    let cos_normals = NORMALS_DEGREES.to_radians().cos();
     let mut kept = vec![false; n];
     let mut cover: Vec<Option<usize>> = vec![None; n];
     let mut merges = Vec::new();
@@ -64,7 +71,11 @@ pub(super) fn merge_overdraw(d: &mut Dense, band: f64, gap: f64, fixed: &[bool])
                 d.near(d.pos[i], band, |j| {
                     let other = d.curve[j] as usize != c;
                     let ok = if other { kept[j] } else { j < i && cover[j].is_none() && d.along(i, j) > 3.0 * band };
-                    if ok && d.tan[i].dot(d.tan[j]).abs() >= cos_parallel {
+                    // Where both carry normals they agree (a stroke drawn twice on one surface),
+                    // unlike a curve that ends on a crease along the other side of it.
+                    let (ni, nj) = (d.nrm[i], d.nrm[j]);
+                    let same_side = ni == DVec3::ZERO || nj == DVec3::ZERO || ni.dot(nj) >= cos_normals;
+                    if ok && same_side && d.tan[i].dot(d.tan[j]).abs() >= cos_parallel {
                         let dist = d.pos[i].distance(d.pos[j]);
                         if best.is_none_or(|b| dist < b.0) {
                             best = Some((dist, j));
@@ -84,7 +95,14 @@ pub(super) fn merge_overdraw(d: &mut Dense, band: f64, gap: f64, fixed: &[bool])
             let (s0, e0) = d.ranges[c];
             let near_end = |end: usize| idx.iter().any(|&i| d.along(i, end) <= 2.0 * gap);
             let at_end = !d.closed[c] && (near_end(s0) || near_end(e0 - 1));
-            if (length < MIN_RUN * band && !(at_end && length >= band)) || shares_a_point(d, &idx, &cover, band) {
+            // Within twice the snapping tolerance over more than six of it: node finding would
+            // refuse the pair as overlapping, whatever the run's length.
+            let close =
+                idx.iter().filter(|&&i| cover[i].is_some_and(|j| d.pos[i].distance(d.pos[j]) <= 2.0 * snap)).count();
+            let tight = close as f64 * d.h >= 6.0 * snap;
+            let long = length >= MIN_RUN * band || (at_end && length >= band) || tight;
+            let crossing = !at_end && crosses(d, &idx, &cover, length, band);
+            if !long || crossing || shares_a_point(d, &idx, &cover, band) {
                 idx.iter().for_each(|&i| cover[i] = None);
                 continue;
             }
@@ -117,6 +135,31 @@ pub(super) fn merge_overdraw(d: &mut Dense, band: f64, gap: f64, fixed: &[bool])
     }
     let moved = average_into(d, &cover, &kept);
     Overdraw { pieces: pieces_of.into_iter().flatten().collect(), merges, dropped, moved }
+}
+
+/// A covered run that passes from one side of the covering stroke to the other at an angle —
+/// its mean offset across the stroke over its first quarter and over its last point to opposite
+/// sides (each a fifth of the band off it) and differ by more than [`CROSSING_DEGREES`] over
+/// the distance between them — is a shallow crossing of another stroke, left to node finding;
+/// overdraw keeps its side, jitter aside. (Runs at a stroke's end are not tested: an end
+/// drawn along a stroke is merged, whatever its angle.)
+fn crosses(d: &Dense, idx: &[usize], cover: &[Option<usize>], length: f64, band: f64) -> bool {
+    let offset = |i: usize| {
+        cover[i].map_or(DVec3::ZERO, |j| {
+            let o = d.pos[i] - d.pos[j];
+            o - d.tan[j] * o.dot(d.tan[j])
+        })
+    };
+    let q = (idx.len() / 4).max(1);
+    let mean = |part: &[usize]| part.iter().map(|&i| offset(i)).sum::<DVec3>() / part.len() as f64;
+    let (a, b) = (mean(&idx[..q]), mean(&idx[idx.len() - q..]));
+    let clear = |o: DVec3| o.length() > 0.2 * band;
+    let other = idx.iter().filter_map(|&i| cover[i]).all(|j| d.curve[j] != d.curve[idx[0]]);
+    other
+        && clear(a)
+        && clear(b)
+        && a.dot(b) < 0.0
+        && a.distance(b) > CROSSING_DEGREES.to_radians().sin() * 0.75 * length
 }
 
 /// A covered run that shares a point with a curve covering it — a vertex of both, as where
