@@ -482,3 +482,26 @@ fn sample_finds_creases_by_default_and_only_json_holds_them() {
     let o = run(&["sample", mesh, "-o", json.to_str().unwrap(), "--crease-angle", "NaN"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
+
+#[test]
+fn raw_strokes_are_consolidated_and_written_and_off_turns_it_off() {
+    let raw = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/sketches/raw/computer-mouse.obj");
+    let dir = scratch("raw-strokes");
+    let out = dir.join("mouse-consolidated.json");
+    let o = run(&["consolidate", raw, "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let said = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(said.contains("ends joined"), "{said}");
+    assert!(stderr(&o).contains("consolidation:"), "{}", stderr(&o));
+    let net = curvenet::io::read_network(&out).unwrap();
+    assert!(net.curves.len() >= 30, "{}", net.curves.len());
+    // The sketch surfaces with the stage (a partial surface: a warning naming what was left
+    // out), and stops at "no patch" or an overlap without it.
+    let (ply, stats) = (dir.join("mouse.ply"), dir.join("mouse-stats.json"));
+    let o = run(&["surface", raw, "-o", ply.to_str().unwrap(), "-q", "--stats", stats.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = std::fs::read_to_string(&stats).unwrap();
+    assert!(s.contains("\"consolidation\": {") && s.contains("\"coverage\":"), "{s}");
+    let o = run(&["surface", raw, "-o", ply.to_str().unwrap(), "-q", "--consolidate", "off"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+}

@@ -86,7 +86,7 @@ fn a_surface_that_misses_most_of_the_strokes_is_an_error() {
     for c in &mut net.curves {
         c.normals.clear();
     }
-    let e = surface(&net, &options()).err().expect("an error, not a surface near a few strokes");
+    let Err(e) = surface(&net, &options()) else { panic!("an error, not a surface near a few strokes") };
     assert!(e.to_string().contains("passes near"), "{e}");
 }
 

@@ -180,7 +180,8 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
             default_gap(&probe, &net.curves, diag, snap)
         }
     };
-    if !(gap > snap) {
+    // An open boundary curve is an error of its own (node finding names it): not repaired here.
+    if !(gap > snap) || net.curves.iter().any(|c| c.boundary && !c.closed) {
         return Ok(unchanged(gap));
     }
     let mut d = Dense::new(&net.curves, spacing(gap), gap);
