@@ -2,6 +2,7 @@
 
 import os
 import subprocess
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -467,3 +468,22 @@ def test_progress_callback():
         raise KeyError("stop")
     with pytest.raises(KeyError):
         curvenet.surface(curvenet.example("sphere"), vertices=3000, progress=boom)
+
+
+def test_consolidate_joins_raw_strokes_and_surface_takes_them():
+    raw = curvenet.read_network(str(ROOT / "data" / "sketches" / "raw" / "computer-mouse.obj"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        net, report, said = curvenet.consolidate(raw)
+        assert report["joined"] > 0 and report["gap"] > 0
+        assert any("consolidation" in str(w) for w in said)
+        V, F, info = curvenet.surface(raw, vertices=5000)
+    assert info["consolidation"]["joined"] == report["joined"]
+    assert 0.5 <= info["coverage"] <= 1.0
+    with pytest.raises(curvenet.Error):
+        curvenet.surface(raw, vertices=5000, consolidate="off")
+    # A clean network is passed on as given.
+    sphere = curvenet.example("sphere")
+    same, report, _ = curvenet.consolidate(sphere)
+    assert report["joined"] + report["merged"] + report["trimmed"] == 0
+    assert [c[0].tolist() for c in same.curves] == [c[0].tolist() for c in sphere.curves]

@@ -9,6 +9,36 @@
 use crate::geom::{grid_cell, DVec3, GridCell};
 use crate::network::Curve;
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// A multiply–xor hash of grid cells (three `i64`s): the hash's lookups are most of
+/// consolidation's time, and std's SipHash (built against collision attacks a grid of our own
+/// points does not face) made the overdraw stage 1.9× slower (measured on 27k dense points,
+/// 52 → 28 ms; docs/performance.md).
+#[derive(Default)]
+pub(super) struct CellHasher(u64);
+
+impl Hasher for CellHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+
+    fn write_i64(&mut self, x: i64) {
+        self.write_u64(x as u64);
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+}
+
+type Grid = HashMap<GridCell, Vec<u32>, BuildHasherDefault<CellHasher>>;
 
 /// The dense points of every curve of a network, and the hash that finds them.
 pub(super) struct Dense {
@@ -33,7 +63,7 @@ pub(super) struct Dense {
     pub(super) h: f64,
     /// Cell side of the hash.
     cell: f64,
-    grid: HashMap<GridCell, Vec<u32>>,
+    grid: Grid,
 }
 
 impl Dense {
@@ -52,7 +82,7 @@ impl Dense {
             length: Vec::new(),
             h,
             cell,
-            grid: HashMap::new(),
+            grid: Grid::default(),
         };
         for (c, curve) in curves.iter().enumerate() {
             let start = d.pos.len();
@@ -144,14 +174,14 @@ impl Dense {
         }
     }
 
-    /// Calls `f(j)` for every dense point `j` within `r` of `p` (`r` at most the cell side).
+    /// Calls `f(j)` for every dense point `j` within `r` of `p` (the cells the ball's box
+    /// meets: 8 for a radius of half the cell).
     pub(super) fn near(&self, p: DVec3, r: f64, mut f: impl FnMut(usize)) {
-        let c = grid_cell(p, self.cell);
-        let k = (r / self.cell).ceil().max(1.0) as i64;
-        for dx in -k..=k {
-            for dy in -k..=k {
-                for dz in -k..=k {
-                    if let Some(list) = self.grid.get(&(c.0 + dx, c.1 + dy, c.2 + dz)) {
+        let (lo, hi) = (grid_cell(p - DVec3::splat(r), self.cell), grid_cell(p + DVec3::splat(r), self.cell));
+        for x in lo.0..=hi.0 {
+            for y in lo.1..=hi.1 {
+                for z in lo.2..=hi.2 {
+                    if let Some(list) = self.grid.get(&(x, y, z)) {
                         for &j in list {
                             if self.pos[j as usize].distance_squared(p) <= r * r {
                                 f(j as usize);

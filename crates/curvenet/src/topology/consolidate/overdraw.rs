@@ -169,10 +169,13 @@ fn shares_a_point(d: &Dense, idx: &[usize], cover: &[Option<usize>], band: f64) 
     let exact = 1e-9 * band;
     let ends = [idx[0], idx[idx.len() - 1]];
     let around = ends.iter().flat_map(|&i| [d.prev(i), Some(i), d.next(i)]).flatten();
-    let covering: Vec<u32> = idx.iter().filter_map(|&i| cover[i]).map(|j| d.curve[j]).collect();
-    idx.iter().copied().chain(around).any(|i| {
+    let mut covering: Vec<u32> = idx.iter().filter_map(|&i| cover[i]).map(|j| d.curve[j]).collect();
+    covering.sort_unstable();
+    covering.dedup();
+    // A shared vertex is an input sample of both curves.
+    idx.iter().copied().chain(around).filter(|&i| d.sample[i]).any(|i| {
         let mut shared = false;
-        d.near(d.pos[i], exact, |j| shared |= d.curve[j] != d.curve[i] && covering.contains(&d.curve[j]));
+        d.near(d.pos[i], exact, |j| shared |= d.curve[j] != d.curve[i] && covering.binary_search(&d.curve[j]).is_ok());
         shared
     })
 }
