@@ -47,9 +47,10 @@ impl Surfacer {
     /// Validates `network` and builds the mesh with `options` (every stage of
     /// [`crate::surface`] but the final solve). Errors as [`crate::surface`].
     ///
-    /// A network with curves without normals has them inferred first
-    /// ([`crate::infer_normals`]); [`Surfacer::network`] is then the network with its inferred
-    /// normals, which the updates change and whose curve indices they take (a stroke left out
+    /// Raw strokes are consolidated first ([`crate::topology::consolidate`]; a clean network
+    /// is kept as given), then a network with curves without normals has them inferred
+    /// ([`crate::infer_normals`]); [`Surfacer::network`] is then the network consolidated and
+    /// with its inferred normals, which the updates change and whose curve indices they take (a stroke left out
     /// as a duplicate is not in it; the first solve's warnings name it). Moved points keep the
     /// normals inferred for the first shape.
     pub fn new(network: &Network, options: &Options) -> Result<Self> {
