@@ -355,8 +355,7 @@ fn result<'py>(py: Python<'py>, s: curvenet::Surface) -> PyResult<Bound<'py, pyo
     let info = PyDict::new(py);
     let stats = serde_json::to_string(&s.stats).map_err(|e| usage(e.to_string()))?;
     info.set_item("stats_json", stats)?;
-    let warnings: Vec<WarningTuple> =
-        s.warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect();
+    let warnings = warning_tuples(&s.warnings);
     info.set_item("warnings", warnings)?;
     info.set_item("num_curve", s.mesh.num_curve)?;
     info.set_item("curve", Array1::from(s.curve_flags.clone()).into_pyarray(py))?;
@@ -424,9 +423,16 @@ fn _infer_normals(
     let opts = &options.inner;
     let inferred = py.detach(|| curvenet::infer_normals(net, opts)).map_err(err)?;
     let report = serde_json::to_string(&inferred.report).map_err(|e| usage(e.to_string()))?;
-    let warnings =
-        inferred.warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect();
-    Ok((PyNetwork { inner: inferred.network, source: network.source.clone() }, report, warnings))
+    Ok((
+        PyNetwork { inner: inferred.network, source: network.source.clone() },
+        report,
+        warning_tuples(&inferred.warnings),
+    ))
+}
+
+/// The warnings of a stage as Python takes them.
+fn warning_tuples(warnings: &[curvenet::Warning]) -> Vec<WarningTuple> {
+    warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect()
 }
 
 /// The network with its raw strokes consolidated (`curvenet::topology::consolidate`):
@@ -443,9 +449,7 @@ fn _consolidate(
     c.enabled = true;
     let done = py.detach(|| curvenet::topology::consolidate::consolidate(net, &c, opts.mesh.snap)).map_err(err)?;
     let report = serde_json::to_string(&done.report).map_err(|e| usage(e.to_string()))?;
-    let warnings =
-        done.warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect();
-    Ok((PyNetwork { inner: done.network, source: network.source.clone() }, report, warnings))
+    Ok((PyNetwork { inner: done.network, source: network.source.clone() }, report, warning_tuples(&done.warnings)))
 }
 
 /// A network prepared for repeated solves that keeps its mesh and factorisations

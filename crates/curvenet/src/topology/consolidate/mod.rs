@@ -70,7 +70,7 @@ pub struct Consolidation {
     pub merged: usize,
     /// Hooks, loops and stubs cut from stroke ends, and remnants left out.
     pub trimmed: usize,
-    /// Curves in and out.
+    /// Curves given.
     pub curves_in: usize,
     /// Curves after consolidation.
     pub curves_out: usize,
@@ -204,11 +204,11 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
         trimmed: hooks.len() + gaps.stubs.len() + od.dropped,
         curves_in: net.curves.len(),
         curves_out: curves.len(),
-        seconds: 0.0,
+        seconds: seconds_since(start),
     };
-    let network = Network { curves, snap: Some(snap) };
-    let report = Consolidation { seconds: seconds_since(start), ..report };
-    Ok(Consolidated { network, report, warnings })
+    // The tolerance the strokes were consolidated with, also for node finding (the default
+    // follows the mean sample spacing, which the changed strokes no longer have).
+    Ok(Consolidated { network: Network { curves, snap: Some(snap) }, report, warnings })
 }
 
 fn curve_length(c: &Curve) -> f64 {

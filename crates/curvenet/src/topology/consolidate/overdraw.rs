@@ -48,7 +48,7 @@ pub(super) struct Overdraw {
 }
 
 /// Finds and merges the overdrawn stretches of the curves of `d` (within `band` of each other;
-/// pieces shorter than `gap` dropped). `fixed[c]`: curve `c` is never covered (a crease or a boundary).
+/// remnants shorter than two `gap`s dropped). `fixed[c]`: curve `c` is never covered (a crease or a boundary).
 pub(super) fn merge_overdraw(d: &mut Dense, band: f64, gap: f64, snap: f64, fixed: &[bool]) -> Overdraw {
     let n = d.pos.len();
     let curves = d.ranges.len();
