@@ -15,16 +15,17 @@
 //! than the least-twist normals (docs/design.md §12).
 
 use super::options::{InferNormals, Options};
-use super::prepare::check_options;
+use super::prepare::{check_options, prepare, Prepared, Progress};
 use super::stats::InferredNormals;
 use crate::curves::CurveSpline;
 use crate::error::{Result, Warning};
 use crate::geom::DVec3;
 use crate::network::Network;
 use crate::solve::timing::{seconds_since, Instant};
-use crate::topology::cycles::{find_patches_open, half_edge_samples};
+use crate::topology::cycles::{find_patches_open, half_edge_samples, segment_places};
 use crate::topology::nodes::Graph;
 use crate::topology::orient::infer_normals as orient_graph;
+use crate::topology::search::CycleKey;
 use crate::topology::Patch;
 use crate::topology::{find_nodes, trim_dangling};
 use rayon::prelude::*;
@@ -42,6 +43,9 @@ pub struct Inferred {
     pub report: InferredNormals,
     /// What was assumed or repaired (the validation's warnings among them).
     pub warnings: Vec<Warning>,
+    /// The cycles chosen for the patches ([`crate::topology::search`]), on the curves of
+    /// `network`; `None` where the rotation walk on the inferred normals finds them.
+    pub cycles: Option<Vec<CycleKey>>,
 }
 
 /// Whether a run with `options` infers normals for `network`: some curve has none, or
@@ -58,13 +62,51 @@ pub fn needs_inference(network: &Network, options: &Options) -> bool {
 /// strokes, curves that bound no 2-manifold). A network whose orientation contradicts itself
 /// (a Möbius-like network) is a warning naming the segments, not an error.
 pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
+    infer(network, options, true)
+}
+
+/// Normal inference and preparation for a network that needs it, with the cycles chosen
+/// globally ([`crate::topology::search`]); where that choice cannot be surfaced (its own
+/// error, or the preparation's), inference again with the patches of the rotation walk on the
+/// inferred normals (\[CG\] §3.2, as before the search), with a warning that says why. An
+/// error of that second path is the run's. `None` for a network that has all its normals.
+pub(crate) fn infer_and_prepare(
+    network: &Network,
+    options: &Options,
+    progress: Progress<'_>,
+) -> Result<(Option<Inferred>, Prepared)> {
+    if !needs_inference(network, options) {
+        return Ok((None, prepare(network, options, None, progress)?));
+    }
+    let searched = infer(network, options, true).and_then(|i| {
+        let p = prepare(&i.network, options, i.cycles.as_deref(), &mut *progress).map_err(explain)?;
+        Ok((i, p))
+    });
+    match searched {
+        Ok((i, p)) => Ok((Some(i), p)),
+        Err(e) => {
+            let mut i = infer(network, options, false)?;
+            let p = prepare(&i.network, options, None, progress).map_err(explain)?;
+            i.report.walk_fallback = true;
+            i.warnings.push(Warning::new(format!(
+                "the patches chosen over the whole network could not be surfaced ({e}); they were found by the \
+                 rotation walk on the inferred normals instead: check the result"
+            )));
+            Ok((Some(i), p))
+        }
+    }
+}
+
+/// [`infer_normals`]; `search`: the cycles chosen over the whole network and the node normals
+/// repaired from them (else the rotation walk's, as before the search).
+fn infer(network: &Network, options: &Options, search: bool) -> Result<Inferred> {
     let start = Instant::now();
     check_options(options)?;
     let (mut net, mut warnings) = network.validated()?;
     let mut known: Vec<bool> =
         net.curves.iter().map(|c| c.has_normals() && options.infer_normals == InferNormals::Missing).collect();
     if known.iter().all(|k| *k) {
-        return Ok(Inferred { network: net, report: InferredNormals::default(), warnings });
+        return Ok(Inferred { network: net, report: InferredNormals::default(), warnings, cycles: None });
     }
     let snap = options.mesh.snap.or(net.snap).unwrap_or_else(|| net.snap_tolerance());
     let mut left_out = 0;
@@ -97,6 +139,12 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     fill_gaps(&mut g, &known);
     warnings.extend(orient.warnings.iter().cloned());
     let lone = close_lone_loops(&mut g, &known);
+    let (repaired, mut cycles, cycles_seconds) =
+        if search { follow_chosen_cycles(&mut g, &splines, &known)? } else { (0, None, 0.0) };
+    if repaired > 0 {
+        clear_outside_segments(&mut g, &known);
+        fill_gaps(&mut g, &known);
+    }
     for &c in &lone {
         warnings.push(
             Warning::new(format!(
@@ -122,7 +170,13 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     let mut trimmed = g.clone();
     warnings.extend(trim_dangling(&mut trimmed)?);
     let splines = fit_splines(&trimmed);
-    let (patches, _) = find_patches_open(&mut trimmed, &splines)?;
+    let patches = match cycles.as_ref().map(|k| disks(&trimmed, k)) {
+        Some(Some(p)) => p,
+        _ => {
+            cycles = None;
+            find_patches_open(&mut trimmed, &splines)?.0
+        }
+    };
     let mut network = with_graph_normals(&net, &g, &known);
     for &c in &lone {
         network.curves[c].boundary = true;
@@ -138,7 +192,12 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     };
     let (before, after) = (count(&g), count(&trimmed));
     let whole: Vec<bool> = (0..g.curves.len()).map(|c| known[c] || before[c] != after[c]).collect();
-    for (curves, outer) in flat_components(&trimmed, &patches, &whole) {
+    let mut dropped = Vec::new();
+    for (curves, outer, covered) in flat_components(&trimmed, &patches, &whole, cycles.is_some()) {
+        dropped.push(outer);
+        if curves.is_empty() || !covered {
+            continue;
+        }
         let names: Vec<&str> = curves.iter().take(6).map(|&c| trimmed.labels[c].as_str()).collect();
         warnings.push(
             Warning::new(format!(
@@ -154,8 +213,55 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
             network.curves[c].boundary = true;
         }
     }
+    if let Some(k) = cycles.as_mut() {
+        dropped.sort_unstable();
+        for &i in dropped.iter().rev() {
+            k.remove(i);
+        }
+        report.cycles_repaired_nodes = repaired;
+        report.chosen_cycles = k.len();
+        report.cycles_seconds = cycles_seconds;
+    }
     report.seconds = seconds_since(start);
-    Ok(Inferred { network, report, warnings })
+    Ok(Inferred { network, report, warnings, cycles })
+}
+
+/// The cycles of `g` chosen globally ([`crate::topology::search`], on `g` with its dangling
+/// parts trimmed) and the node normals of `g` repaired from them
+/// ([`crate::topology::orient::follow_patches`]). Returns the nodes repaired and the cycles.
+fn follow_chosen_cycles(
+    g: &mut Graph,
+    splines: &[CurveSpline],
+    known: &[bool],
+) -> Result<(usize, Option<Vec<CycleKey>>, f64)> {
+    let clock = Instant::now();
+    let mut trimmed = g.clone();
+    trim_dangling(&mut trimmed)?;
+    let choice = crate::topology::search::choose_cycles(&trimmed, &fit_splines(&trimmed));
+    let by_key = segment_places(g);
+    let mut ends = vec![[None, None]; g.segments.len()];
+    for (seg, vote) in trimmed.segments.iter().zip(choice.end_votes(&trimmed)) {
+        if let Some(&i) = by_key.get(&(seg.curve, seg.first, seg.last)) {
+            ends[i] = vote;
+        }
+    }
+    let repaired = crate::topology::orient::follow_patches(g, splines, known, &ends);
+    Ok((repaired, Some(choice.keys(&trimmed)), seconds_since(clock)))
+}
+
+/// The cycles `keys` as disk patches of `g`; `None` when one of them is not on `g`.
+fn disks(g: &Graph, keys: &[CycleKey]) -> Option<Vec<Patch>> {
+    let at = segment_places(g);
+    keys.iter()
+        .map(|k| {
+            k.iter()
+                .map(|&(c, f, l, forward)| {
+                    at.get(&(c, f, l)).map(|&segment| crate::topology::HalfEdge { segment, forward })
+                })
+                .collect::<Option<Vec<_>>>()
+                .map(Patch::Disk)
+        })
+        .collect()
 }
 
 /// A component of `g` whose `patches` enclose (nearly) no volume — a loop of curves, or a
@@ -165,7 +271,11 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
 /// segments lie on that face, when they make up the whole face) and the face. The test: the
 /// volume enclosed by the faces (fans from their centres) below 5% of that of a sphere of the
 /// same area.
-fn flat_components(g: &Graph, patches: &[Patch], keep: &[bool]) -> Vec<(Vec<usize>, usize)> {
+///
+/// With `closed_only` (cycles chosen globally, where an open sheet is open already), a part with
+/// a segment that one of its patches bounds alone is left as it is. The last field of each
+/// result says whether the curves to tag make up the whole face.
+fn flat_components(g: &Graph, patches: &[Patch], keep: &[bool], closed_only: bool) -> Vec<(Vec<usize>, usize, bool)> {
     let comps = g.node_components();
     let mut by_comp: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
     for (i, p) in patches.iter().enumerate() {
@@ -198,6 +308,13 @@ fn flat_components(g: &Graph, patches: &[Patch], keep: &[bool]) -> Vec<(Vec<usiz
         if !(volume.abs() < 0.05 * sphere) || list.len() < 2 {
             continue;
         }
+        if closed_only {
+            let mut uses: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+            list.iter().flat_map(|&i| patches[i].half_edges()).for_each(|h| *uses.entry(h.segment).or_default() += 1);
+            if uses.values().any(|&u| u < 2) {
+                continue;
+            }
+        }
         let k = (0..list.len()).max_by(|&a, &b| areas[a].total_cmp(&areas[b])).unwrap_or(0);
         let outer = list[k];
         let on_outer: std::collections::BTreeSet<usize> =
@@ -213,8 +330,8 @@ fn flat_components(g: &Graph, patches: &[Patch], keep: &[bool]) -> Vec<(Vec<usiz
             .collect();
         // The whole border or nothing: a border tagged in part does not close.
         let covered = on_outer.iter().all(|&s| curves.contains(&g.segments[s].curve));
-        if !curves.is_empty() && covered {
-            out.push((curves, outer));
+        if closed_only || (!curves.is_empty() && covered) {
+            out.push((curves, outer, covered));
         }
     }
     out
@@ -294,6 +411,26 @@ pub(crate) fn add_to_surface(surface: &mut super::Surface, report: &InferredNorm
 /// Splines through the curves of `g` (positions and the current normals).
 fn fit_splines(g: &Graph) -> Vec<CurveSpline> {
     g.curves.par_iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect()
+}
+
+/// Clears the normals of the samples of inferred curves outside every segment (past the end
+/// node of a stroke), for [`fill_gaps`] to carry them again from the nodes' current normals.
+fn clear_outside_segments(g: &mut Graph, known: &[bool]) {
+    let mut covered: Vec<Vec<bool>> = g.curves.iter().map(|c| vec![false; c.points.len()]).collect();
+    for seg in &g.segments {
+        let m = covered[seg.curve].len();
+        (seg.first..=seg.last).for_each(|i| covered[seg.curve][i % m] = true);
+    }
+    for (c, sc) in g.curves.iter_mut().enumerate() {
+        if known[c] {
+            continue;
+        }
+        for (n, &cov) in sc.normals.iter_mut().zip(&covered[c]) {
+            if !cov {
+                *n = DVec3::ZERO;
+            }
+        }
+    }
 }
 
 /// Samples of inferred curves outside every segment (past an end node that snapped short of

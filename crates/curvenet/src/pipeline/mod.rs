@@ -50,17 +50,11 @@ pub fn surface_with_progress(
     let original = network;
     let consolidated = consolidate(network, options, progress)?;
     let network = consolidated.as_ref().filter(|c| c.changed()).map_or(network, |c| &c.network);
-    let inferred = if infer::needs_inference(network, options) {
-        let inferred = infer::infer_normals(network, options)?;
-        let r = &inferred.report;
+    let (inferred, prepared) = infer::infer_and_prepare(network, options, progress)?;
+    if let Some(r) = inferred.as_ref().map(|i| &i.report) {
         progress("normals", r.seconds, &format!("{} curves inferred", r.curves));
-        Some(inferred)
-    } else {
-        None
-    };
-    let network = inferred.as_ref().map_or(network, |i| &i.network);
+    }
     let explain = |e| if inferred.is_some() { infer::explain(e) } else { e };
-    let prepared = prepare::prepare(network, options, progress).map_err(explain)?;
     let base = prepared.timings;
     let mut surface = solve::solve_prepared(Cow::Owned(prepared), options, progress, None, base).map_err(explain)?;
     let changed = consolidated.as_ref().is_some_and(|c| c.changed());

@@ -15,8 +15,9 @@ use crate::solve::timing::{seconds_since, timed, Instant};
 use crate::solve::SolveTimings;
 use crate::tessellate::{tessellate, VERTICES_PER_AREA};
 use crate::topology::creases::{check_sides, patch_normals, segment_sides, Seams};
-use crate::topology::cycles::{find_patches_open, half_edge_samples};
+use crate::topology::cycles::{find_patches_open, half_edge_samples, patches_from_keys};
 use crate::topology::resample::{resample_network, Resampled};
+use crate::topology::search::CycleKey;
 use crate::topology::{find_nodes, trim_dangling, Graph, Patch};
 use rayon::prelude::*;
 
@@ -76,11 +77,19 @@ pub(super) struct Topology {
 
 /// Validates, finds the nodes and patches, picks the spacing, resamples and tessellates
 /// (with the conformal first solve when `options.mesh.patching` asks for it).
-pub(crate) fn prepare(network: &Network, options: &Options, progress: Progress<'_>) -> Result<Prepared> {
+///
+/// `cycles`: the patches' cycles chosen beforehand (normal inference's global search), used
+/// instead of the rotation walk when they are cycles of this network's graph.
+pub(crate) fn prepare(
+    network: &Network,
+    options: &Options,
+    cycles: Option<&[CycleKey]>,
+    progress: Progress<'_>,
+) -> Result<Prepared> {
     let start = Instant::now();
     let mut timings = Timings::default();
     check_options(options)?;
-    let mut topo = topology(network, &options.mesh, &mut timings, progress)?;
+    let mut topo = topology(network, &options.mesh, cycles, &mut timings, progress)?;
 
     // Spacing.
     let clock = Instant::now();
@@ -187,7 +196,13 @@ pub(super) fn check_options(options: &Options) -> Result<()> {
 
 /// Validation, nodes and segments (\[CG\] §3.1), splines (the tangents at nodes) and cycles
 /// (\[CG\] §3.2).
-fn topology(network: &Network, mesh: &MeshOptions, timings: &mut Timings, progress: Progress<'_>) -> Result<Topology> {
+fn topology(
+    network: &Network,
+    mesh: &MeshOptions,
+    cycles: Option<&[CycleKey]>,
+    timings: &mut Timings,
+    progress: Progress<'_>,
+) -> Result<Topology> {
     let clock = Instant::now();
     let (net, mut warnings) = network.validated()?;
     let snap = mesh.snap.or(net.snap).unwrap_or_else(|| net.snap_tolerance());
@@ -200,7 +215,13 @@ fn topology(network: &Network, mesh: &MeshOptions, timings: &mut Timings, progre
     let splines: Vec<CurveSpline> = timed(&mut timings.resample, || {
         g.curves.par_iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect()
     });
-    let (patches, w) = timed(&mut timings.cycles, || find_patches_open(&mut g, &splines))?;
+    let (patches, w) = timed(&mut timings.cycles, || match cycles {
+        Some(keys) => match patches_from_keys(&mut g, &splines, keys)? {
+            Some(found) => Ok(found),
+            None => find_patches_open(&mut g, &splines),
+        },
+        None => find_patches_open(&mut g, &splines),
+    })?;
     warnings.extend(w);
     if net.has_creases() {
         check_sides(&g, &patches, &g.labels)?;

@@ -114,6 +114,15 @@ pub struct InferredNormals {
     pub opened_components: usize,
     /// Times a component (or the whole closed surface) was turned to face outward.
     pub turned_outward: usize,
+    /// Patches whose cycles the global search chose ([`crate::topology::search`]).
+    pub chosen_cycles: usize,
+    /// Nodes whose inferred normal the chosen patches turned over or replaced.
+    pub cycles_repaired_nodes: usize,
+    /// Seconds of the global cycle search.
+    pub cycles_seconds: f64,
+    /// The cycles chosen over the whole network could not be surfaced: the run fell back to
+    /// the rotation walk on the inferred normals (a warning says why).
+    pub walk_fallback: bool,
     /// Seconds of the whole inference.
     pub seconds: f64,
 }

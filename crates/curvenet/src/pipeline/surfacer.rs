@@ -41,6 +41,8 @@ pub struct Surfacer {
     prepared: Prepared,
     kept: Option<Kept>,
     solves: usize,
+    /// The cycles chosen by normal inference's global search, kept for a fresh preparation.
+    cycles: Option<Vec<crate::topology::search::CycleKey>>,
 }
 
 impl Surfacer {
@@ -56,15 +58,21 @@ impl Surfacer {
     pub fn new(network: &Network, options: &Options) -> Result<Self> {
         let consolidated = super::consolidate(network, options, &mut |_, _, _| {})?;
         let network = consolidated.as_ref().filter(|c| c.changed()).map_or(network, |c| &c.network);
-        let (network, inferred) = if super::infer::needs_inference(network, options) {
-            let i = super::infer::infer_normals(network, options)?;
-            (i.network, Some((i.report, i.warnings)))
-        } else {
-            (network.clone(), None)
+        let (inferred, prepared) = super::infer::infer_and_prepare(network, options, &mut |_, _, _| {})?;
+        let (network, inferred, cycles) = match inferred {
+            Some(i) => (i.network, Some((i.report, i.warnings)), i.cycles),
+            None => (network.clone(), None, None),
         };
-        let explain = |e| if inferred.is_some() { super::infer::explain(e) } else { e };
-        let prepared = prepare(&network, options, &mut |_, _, _| {}).map_err(explain)?;
-        Ok(Surfacer { network, inferred, consolidated, options: options.clone(), prepared, kept: None, solves: 0 })
+        Ok(Surfacer {
+            network,
+            inferred,
+            consolidated,
+            options: options.clone(),
+            prepared,
+            kept: None,
+            solves: 0,
+            cycles,
+        })
     }
 
     /// The network with the current normals.
@@ -231,7 +239,7 @@ impl Surfacer {
     /// preparation: the kept factorisations go, the next solve is a first solve. The surfacer
     /// is unchanged on error.
     fn reprepared(&mut self, network: Network) -> Result<()> {
-        self.prepared = prepare(&network, &self.options, &mut |_, _, _| {})?;
+        self.prepared = prepare(&network, &self.options, self.cycles.as_deref(), &mut |_, _, _| {})?;
         self.kept = None;
         self.solves = 0;
         self.network = network;

@@ -11,6 +11,7 @@ pub mod nodes;
 pub mod open;
 pub mod orient;
 pub mod resample;
+pub mod search;
 
 pub use cycles::{find_patches, HalfEdge, Patch};
 pub use nodes::{find_nodes, Graph, Node, Segment, SplitCurve};

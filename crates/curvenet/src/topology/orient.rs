@@ -224,6 +224,88 @@ pub fn infer_normals(g: &mut Graph, splines: &[CurveSpline], known: &[bool]) -> 
     Ok(report)
 }
 
+/// Repairs the inferred normals of `g` from the patches chosen for it ([`super::search`]):
+/// `ends[s]` holds the chosen patches' normal at the start and at the end of segment `s`
+/// ([`super::search::Choice::end_votes`]); a node's vote is their sum over its ends. A node
+/// normal within 60° of its vote (either sign) keeps its direction and takes the vote's sign;
+/// one further from it (the junction's tangents span another plane than its patches: a dense
+/// or nearly planar junction) takes the vote's direction, unless the junction's tangents give
+/// a plane of their own. Nodes that a `known` curve passes keep their given normal; nodes no
+/// patch passes take the sign carried to them from their neighbours. The normals along the
+/// segments of inferred curves are then carried again between the nodes (step 3). Returns the
+/// nodes changed.
+pub fn follow_patches(g: &mut Graph, splines: &[CurveSpline], known: &[bool], ends: &[[Option<DVec3>; 2]]) -> usize {
+    let mut fixed = vec![false; g.nodes.len()];
+    for (c, curve) in g.curves.iter().enumerate() {
+        if known[c] {
+            curve.nodes.iter().for_each(|&(_, v)| fixed[v] = true);
+        }
+    }
+    let mut votes: Vec<Option<DVec3>> = vec![None; g.nodes.len()];
+    for (seg, e) in g.segments.iter().zip(ends) {
+        for (v, vote) in [(seg.start, e[0]), (seg.end, e[1])] {
+            if let Some(x) = vote {
+                votes[v] = Some(votes[v].unwrap_or(DVec3::ZERO) + x.normalize_or_zero());
+            }
+        }
+    }
+    let estimates = node_estimates(g, splines);
+    let mut changed = 0;
+    for v in 0..g.nodes.len() {
+        let Some(vote) = votes[v].map(|x| x.normalize_or_zero()) else { continue };
+        if fixed[v] || vote == DVec3::ZERO {
+            continue;
+        }
+        let cur = g.nodes[v].normal;
+        let new = if cur.dot(vote).abs() >= 0.5 || estimates[v].is_some() {
+            if cur.dot(vote) < 0.0 {
+                -cur
+            } else {
+                cur
+            }
+        } else {
+            vote
+        };
+        if new != cur {
+            g.nodes[v].normal = new;
+            changed += 1;
+        }
+    }
+    if changed > 0 {
+        let tangents: Vec<Vec<DVec3>> = (0..g.curves.len()).map(|c| sample_tangents(g, splines, c)).collect();
+        // Nodes no chosen patch passes (ends of dangling strokes, strokes left out) take the
+        // sign of the normal carried to them from a node that has a vote, breadth first, so
+        // that no segment turns its normal over between its two ends.
+        let mut settled: Vec<bool> = (0..g.nodes.len()).map(|v| fixed[v] || votes[v].is_some()).collect();
+        let mut queue: std::collections::VecDeque<usize> = (0..g.nodes.len()).filter(|&v| settled[v]).collect();
+        let mut at: Vec<Vec<usize>> = vec![Vec::new(); g.nodes.len()];
+        for (s, seg) in g.segments.iter().enumerate() {
+            at[seg.start].push(s);
+            at[seg.end].push(s);
+        }
+        while let Some(v) = queue.pop_front() {
+            for &s in &at[v] {
+                let seg = &g.segments[s];
+                let w = if seg.start == v { seg.end } else { seg.start };
+                if settled[w] {
+                    continue;
+                }
+                settled[w] = true;
+                if carry(g, &tangents, s, v).dot(g.nodes[w].normal) < 0.0 {
+                    g.nodes[w].normal = -g.nodes[w].normal;
+                    changed += 1;
+                }
+                queue.push_back(w);
+            }
+        }
+    }
+    if changed > 0 {
+        let tangents: Vec<Vec<DVec3>> = (0..g.curves.len()).map(|c| sample_tangents(g, splines, c)).collect();
+        fill_segments(g, &tangents, known);
+    }
+    changed
+}
+
 /// One orientation for the nodes of `g` (step 2): sets every node normal that is not `fixed`
 /// from `estimates` with a consistent sign, or by transport where it has no estimate.
 fn orient(
@@ -534,7 +616,8 @@ fn fill_segments(g: &mut Graph, tangents: &[Vec<DVec3>], known: &[bool]) {
             continue;
         }
         let (p, t) = segment_path(g, tangents, s);
-        let carried = transport(&p, &t, g.nodes[seg.start].normal);
+        let start = g.nodes[seg.start].normal;
+        let carried = transport(&p, &t, start);
         let end = g.nodes[seg.end].normal;
         let miss = angle_about(*carried.last().unwrap_or(&end), end, *t.last().unwrap_or(&DVec3::Z));
         let frac = arc_fractions(&p);
@@ -544,7 +627,7 @@ fn fill_segments(g: &mut Graph, tangents: &[Vec<DVec3>], known: &[bool]) {
             g.curves[seg.curve].normals[i % m] = n;
         }
         let (first, last) = (seg.first % m, seg.last % m);
-        g.curves[seg.curve].normals[first] = g.nodes[seg.start].normal;
+        g.curves[seg.curve].normals[first] = start;
         g.curves[seg.curve].normals[last] = end;
     }
 }

@@ -11,7 +11,7 @@ use crate::Options;
 #[test]
 fn reusing_the_first_solves_analysis_changes_nothing() {
     let network = example("torus").unwrap();
-    let prepared = prepare(&network, &Options::fast().with_vertices(4000), &mut |_, _, _| {}).unwrap();
+    let prepared = prepare(&network, &Options::fast().with_vertices(4000), None, &mut |_, _, _| {}).unwrap();
     let mesh = &prepared.mesh;
     let ops = cotan_operators(mesh, Metric::Planar, &mesh.positions);
     let mut t = SolveTimings::default();

@@ -18,6 +18,7 @@
 //! The stages: `faces.rs` checks the nodes, sorts the segment ends around them and traces and
 //! classifies the faces; `lone.rs` turns the lone boundary loops into tubes and disks.
 
+mod chosen;
 mod faces;
 mod lone;
 
@@ -25,6 +26,7 @@ use super::nodes::Graph;
 use crate::curves::CurveSpline;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
+pub use chosen::{patches_from_keys, segment_places};
 use faces::{check_boundary_sides, check_valence, classify_faces, node_ends, trace_faces, Parts, Rotation};
 use lone::{lone_loops, lone_patches};
 

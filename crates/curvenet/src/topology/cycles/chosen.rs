@@ -1,0 +1,91 @@
+//! Patches from cycles chosen beforehand ([`crate::topology::search`], on the graph that normal
+//! inference built): mapped onto this graph's segments by their places on the curves, the
+//! segments no chosen cycle runs along left out, and the lone boundary loops (parts of the
+//! network made of boundary curves only) paired into tubes and disks as the rotation walk
+//! pairs them.
+
+use super::faces::Parts;
+use super::{find_patches_open, HalfEdge, Patch};
+use crate::curves::CurveSpline;
+use crate::error::{Result, Warning};
+use crate::topology::nodes::Graph;
+use crate::topology::open::remove_segments;
+use crate::topology::search::CycleKey;
+use std::collections::HashMap;
+
+/// Per segment place `(curve, first sample, last sample)`: the segment's index in `g` (the
+/// same segment in another graph of the same curves, which numbers its segments anew).
+pub fn segment_places(g: &Graph) -> HashMap<(usize, usize, usize), usize> {
+    g.segments.iter().enumerate().map(|(i, s)| ((s.curve, s.first, s.last), i)).collect()
+}
+
+/// The patches of `g` bounded by the cycles `keys`, and the lone loops' tubes and disks;
+/// segments outside them are removed from `g`, each curve left out wholly named in a warning.
+/// `None` when some key is not a segment of `g` (the graph differs from the one the cycles
+/// were chosen on): the caller then finds the patches itself.
+pub fn patches_from_keys(
+    g: &mut Graph,
+    splines: &[CurveSpline],
+    keys: &[CycleKey],
+) -> Result<Option<(Vec<Patch>, Vec<Warning>)>> {
+    let at = segment_places(g);
+    if keys.iter().flatten().any(|k| !at.contains_key(&(k.0, k.1, k.2))) {
+        return Ok(None);
+    }
+    let mut used = vec![false; g.segments.len()];
+    keys.iter().flatten().for_each(|k| used[at[&(k.0, k.1, k.2)]] = true);
+    let parts = Parts::new(g);
+    let lone = |g: &Graph, parts: &Parts, s: usize| !parts.has_interior[parts.seg_root[s]] && g.segments[s].boundary;
+    let unused: Vec<usize> = (0..g.segments.len()).filter(|&s| !used[s] && !lone(g, &parts, s)).collect();
+    let mut warnings = Vec::new();
+    let mut named: Vec<usize> = Vec::new();
+    for &s in &unused {
+        let c = g.segments[s].curve;
+        if !named.contains(&c) {
+            named.push(c);
+        }
+    }
+    for &c in named.iter().take(10) {
+        let whole = g.segments.iter().enumerate().filter(|(_, seg)| seg.curve == c).all(|(s, _)| !used[s]);
+        let what = if whole { "bounds none of the patches chosen" } else { "runs partly outside the patches chosen" };
+        warnings.push(
+            Warning::new(format!(
+                "{} {what} (it cuts into a patch or dangles from the network): the part outside was left out of \
+                 the surface",
+                g.labels[c]
+            ))
+            .curve(c),
+        );
+    }
+    if named.len() > 10 {
+        warnings.push(Warning::new(format!("{} more curves were left out in part or wholly", named.len() - 10)));
+    }
+    remove_segments(g, &unused);
+    let at = segment_places(g);
+    let mut patches: Vec<Patch> = keys
+        .iter()
+        .map(|k| {
+            Patch::Disk(k.iter().map(|&(c, f, l, forward)| HalfEdge { segment: at[&(c, f, l)], forward }).collect())
+        })
+        .collect();
+    // Lone boundary loops: the rotation walk's tubes and disks, on a graph of them alone.
+    let parts = Parts::new(g);
+    let others: Vec<usize> = (0..g.segments.len()).filter(|&s| !lone(g, &parts, s)).collect();
+    if others.len() < g.segments.len() {
+        let mut sub = g.clone();
+        remove_segments(&mut sub, &others);
+        let (loops, w) = find_patches_open(&mut sub, splines)?;
+        warnings.extend(w);
+        let back = |h: &HalfEdge| {
+            let s = &sub.segments[h.segment];
+            HalfEdge { segment: at[&(s.curve, s.first, s.last)], forward: h.forward }
+        };
+        for p in loops {
+            patches.push(match p {
+                Patch::Disk(c) => Patch::Disk(c.iter().map(back).collect()),
+                Patch::Tube([a, b]) => Patch::Tube([a.iter().map(back).collect(), b.iter().map(back).collect()]),
+            });
+        }
+    }
+    Ok(Some((patches, warnings)))
+}

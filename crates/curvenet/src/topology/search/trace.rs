@@ -1,0 +1,286 @@
+//! Candidate cycles: faces traced with a normal of their own (docs/design.md §15.1).
+//!
+//! The rotation walk of \[CG\] §3.2 leaves each node along the clockwise neighbour of the
+//! segment it arrived by, around the node's normal. Here the normal is not the network's: each
+//! trace starts at a half-edge with one of the two signs of its start node's tangent plane
+//! normal and carries it along (parallel transport, Wang et al. 2008), taking at each node the
+//! sign of the node's tangent plane normal that the carried one agrees with. A node whose sign
+//! the network as a whole gets wrong, or where two sheets touch, then spoils only the traces
+//! through it, not every face of its component. Each trace records what its cost needs: the
+//! total turning of its boundary and how far the carried normal comes back from where it
+//! started.
+
+use super::super::cycles::HalfEdge;
+use super::super::nodes::Graph;
+use super::super::orient::transport;
+use crate::curves::CurveSpline;
+use crate::geom::DVec3;
+
+/// The longest cycle traced, in segments: longer ones are not patches of a sketch.
+pub(super) const MAX_CYCLE: usize = 48;
+
+/// Per-segment geometry and per-node segment ends, for tracing.
+pub(super) struct Walker<'a> {
+    g: &'a Graph,
+    /// Per segment: its samples and unit tangents (spline) in sample order.
+    paths: Vec<(Vec<DVec3>, Vec<DVec3>)>,
+    /// Per node: its segment ends `(segment, at_start, unit tangent away from the node)`.
+    pub(super) ends: Vec<Vec<(usize, bool, DVec3)>>,
+    /// Per node: its unsigned tangent plane normal, where the tangents span a plane.
+    estimates: Vec<Option<DVec3>>,
+    /// Per node: the tangent plane normal where every segment end lies within 30° of that
+    /// plane; `None` where sheets meet at an angle (petals touching at a flower's centre), so
+    /// that a trace through the node keeps the normal of its own sheet.
+    planar: Vec<Option<DVec3>>,
+}
+
+/// A traced face: its half-edges, and per half-edge the carried normal at its start node.
+#[derive(Clone, Debug)]
+pub(super) struct Trace {
+    pub(super) cycle: Vec<HalfEdge>,
+    pub(super) normals: Vec<DVec3>,
+    /// Per half-edge: the unit direction from its middle sample into the face (towards the
+    /// centroid of the face's samples, across the tangent), for the fold test between faces
+    /// that share the segment.
+    pub(super) inward: Vec<DVec3>,
+    /// Total turning of the boundary about the carried normal (radians): 2π for a flat face
+    /// traversed counter-clockwise, 2π − ∫K on a curved one (Gauss–Bonnet).
+    pub(super) turning: f64,
+    /// Angle (radians) between the start normal and the normal carried once around.
+    pub(super) holonomy: f64,
+}
+
+/// Signed angle from `a` to `b` about the unit axis `n` (both projected across `n`).
+fn angle_about(a: DVec3, b: DVec3, n: DVec3) -> f64 {
+    let (a, b) = (a - n * a.dot(n), b - n * b.dot(n));
+    a.cross(b).dot(n).atan2(a.dot(b))
+}
+
+/// The unit direction from `p` (a sample of half-edge `k` of a face, tangent `t`) into the
+/// face: towards the nearest sample of the face's other half-edges that lies within about 15°
+/// of the plane across `t` at `p` (the face's width there, also where the face is not convex:
+/// a half ring's centroid lies outside it), across `t`; towards the centroid of the face's
+/// samples where no sample lies in that plane.
+fn inward(p: DVec3, t: DVec3, k: usize, samples: &[(DVec3, usize)]) -> DVec3 {
+    let across = |d: DVec3| (d - t * d.dot(t)).normalize_or_zero();
+    let mut best: Option<(f64, DVec3)> = None;
+    for &(q, j) in samples {
+        let d = q - p;
+        let len = d.length();
+        if j == k || len == 0.0 || d.dot(t).abs() > 0.25 * len {
+            continue;
+        }
+        if best.is_none_or(|b| len < b.0) {
+            best = Some((len, d));
+        }
+    }
+    match best {
+        Some((_, d)) => across(d),
+        None => {
+            let centroid = samples.iter().map(|s| s.0).sum::<DVec3>() / samples.len().max(1) as f64;
+            across(centroid - p)
+        }
+    }
+}
+
+impl<'a> Walker<'a> {
+    /// Geometry of `g` for tracing; `splines[c]` is the spline of `g.curves[c]`.
+    pub(super) fn new(g: &'a Graph, splines: &[CurveSpline]) -> Self {
+        let paths = g
+            .segments
+            .iter()
+            .map(|seg| {
+                let c = &g.curves[seg.curve];
+                let sp = &splines[seg.curve];
+                let m = c.points.len();
+                let idx: Vec<usize> = (seg.first..=seg.last).map(|i| i % m).collect();
+                let p: Vec<DVec3> = idx.iter().map(|&i| c.points[i]).collect();
+                let t: Vec<DVec3> = idx.iter().map(|&i| sp.tangent(sp.knot(i), true).normalize_or_zero()).collect();
+                (p, t)
+            })
+            .collect();
+        let mut ends: Vec<Vec<(usize, bool, DVec3)>> = vec![Vec::new(); g.nodes.len()];
+        for (s, seg) in g.segments.iter().enumerate() {
+            let sp = &splines[seg.curve];
+            let t0 = sp.tangent(sp.knot(seg.first), true).normalize_or_zero();
+            let t1 = -sp.tangent(sp.knot(seg.last), false).normalize_or_zero();
+            ends[seg.start].push((s, true, t0));
+            ends[seg.end].push((s, false, t1));
+        }
+        let estimates: Vec<Option<DVec3>> = ends
+            .iter()
+            .map(|list| {
+                let t: Vec<DVec3> = list.iter().map(|e| e.2).collect();
+                super::super::orient::tangent_plane_normal(&t).map(|(n, _)| n)
+            })
+            .collect();
+        let planar = estimates
+            .iter()
+            .zip(&ends)
+            .map(|(e, list)| e.filter(|n| list.iter().all(|x| x.2.dot(*n).abs() < 0.5)))
+            .collect();
+        Walker { g, paths, ends, estimates, planar }
+    }
+
+    /// A start normal for half-edge `h` at its first node: the node's tangent plane normal,
+    /// else one across `h` and another segment leaving there; `None` when every segment there
+    /// leaves along one line.
+    pub(super) fn start_normal(&self, h: HalfEdge) -> Option<DVec3> {
+        let seg = &self.g.segments[h.segment];
+        let v = if h.forward { seg.start } else { seg.end };
+        let t = self.leaving(h);
+        let n = match self.estimates[v] {
+            Some(n) if (n - t * n.dot(t)).length() > 0.3 => n,
+            _ => {
+                let mut best = DVec3::ZERO;
+                for e in &self.ends[v] {
+                    let c = t.cross(e.2);
+                    if c.length() > best.length() {
+                        best = c;
+                    }
+                }
+                best
+            }
+        };
+        let n = (n - t * n.dot(t)).normalize_or_zero();
+        (n.length() > 0.5).then_some(n)
+    }
+
+    /// The direction into a face from its half-edge `k`, read off the face's corners at both
+    /// ends of it: the neighbouring half-edges' directions away from the node, across the
+    /// half-edge's tangent there (averaged). `None` where both corners are (nearly) straight
+    /// (sine below 0.3: a smooth loop of short segments), where the corners say nothing.
+    fn corner_inward(&self, cycle: &[HalfEdge], k: usize) -> Option<DVec3> {
+        let n = cycle.len();
+        let (h, prev, next) = (cycle[k], cycle[(k + n - 1) % n], cycle[(k + 1) % n]);
+        let end = |s: usize, at_start: bool| {
+            let seg = &self.g.segments[s];
+            let v = if at_start { seg.start } else { seg.end };
+            self.ends[v].iter().find(|e| e.0 == s && e.1 == at_start).map(|e| e.2)
+        };
+        // At h's first node: h leaves along `t`, `prev` arrives (its end there points away).
+        // At h's last node: h's end points back along h, `next` leaves.
+        let corners = [
+            (end(h.segment, h.forward)?, end(prev.segment, !prev.forward)?),
+            (end(h.segment, !h.forward)?, end(next.segment, next.forward)?),
+        ];
+        let mut sum = DVec3::ZERO;
+        for (t, d) in corners {
+            let across = d - t * d.dot(t);
+            if across.length() > 0.3 {
+                sum += across.normalize();
+            }
+        }
+        (sum.length() > 1e-6).then(|| sum.normalize())
+    }
+
+    /// The unit tangent of `h` where it leaves its first node.
+    fn leaving(&self, h: HalfEdge) -> DVec3 {
+        let seg = &self.g.segments[h.segment];
+        let v = if h.forward { seg.start } else { seg.end };
+        self.ends[v].iter().find(|e| e.0 == h.segment && e.1 == h.forward).map_or(DVec3::ZERO, |e| e.2)
+    }
+
+    /// The samples and tangents of `h` in its direction.
+    fn path(&self, h: HalfEdge) -> (Vec<DVec3>, Vec<DVec3>) {
+        let (p, t) = &self.paths[h.segment];
+        if h.forward {
+            (p.clone(), t.clone())
+        } else {
+            (p.iter().rev().copied().collect(), t.iter().rev().map(|x| -*x).collect())
+        }
+    }
+
+    /// The face on the left of `h0` about the normal `n0` (unit, across `h0`'s tangent),
+    /// traced as the module documentation says; `None` when it is not a simple cycle of at
+    /// most [`MAX_CYCLE`] segments (it passes a node twice, or a node leaves no way on).
+    ///
+    /// A trace that comes back to its first node closes there, whatever the order of the
+    /// segment ends around it: at a node where sheets touch (petals at the centre of a flower)
+    /// that order means nothing, and the cost judges the corner the closing makes.
+    pub(super) fn trace(&self, h0: HalfEdge, n0: DVec3) -> Option<Trace> {
+        let g = self.g;
+        let (mut h, mut n) = (h0, n0);
+        let s0 = &g.segments[h0.segment];
+        let first = if h0.forward { s0.start } else { s0.end };
+        let (mut cycle, mut normals, mut mids) = (Vec::new(), Vec::new(), Vec::new());
+        // Every sample of the face with the index of its half-edge, for the inward directions.
+        let mut samples: Vec<(DVec3, usize)> = Vec::new();
+        let mut visited: Vec<usize> = Vec::new();
+        let mut turning = 0.0;
+        loop {
+            cycle.push(h);
+            normals.push(n);
+            let (p, t) = self.path(h);
+            let carried = transport(&p, &t, n);
+            mids.push((p[p.len() / 2], t[t.len() / 2]));
+            samples.extend(p.iter().skip(1).map(|&x| (x, cycle.len() - 1)));
+            for i in 0..t.len().saturating_sub(1) {
+                turning += angle_about(t[i], t[i + 1], carried[i]);
+            }
+            let seg = &g.segments[h.segment];
+            let (v, arrive_at_start) = if h.forward { (seg.end, false) } else { (seg.start, true) };
+            if v != first && visited.contains(&v) {
+                return None;
+            }
+            visited.push(v);
+            let mut nv = *carried.last()?;
+            if let Some(est) = self.planar[v] {
+                if est.dot(nv).abs() > 0.5 {
+                    nv = if est.dot(nv) < 0.0 { -est } else { est };
+                }
+            }
+            // The arrival end's tangent points away from v, back along the segment.
+            let a = self.ends[v].iter().find(|e| e.0 == h.segment && e.1 == arrive_at_start)?.2;
+            // Leave along the clockwise neighbour of the arrival end (the largest
+            // counter-clockwise angle from it), or back along `h0` at the first node.
+            let ccw = |d: DVec3| {
+                let ang = angle_about(a, d, nv);
+                if ang <= 0.0 {
+                    ang + std::f64::consts::TAU
+                } else {
+                    ang
+                }
+            };
+            let (ang, s, at_start, d) = if v == first {
+                let d = self.leaving(h0);
+                (ccw(d), h0.segment, h0.forward, d)
+            } else {
+                let mut best: Option<(f64, usize, bool, DVec3)> = None;
+                for &(s, at_start, d) in &self.ends[v] {
+                    if s == h.segment && at_start == arrive_at_start {
+                        continue;
+                    }
+                    if (d - nv * d.dot(nv)).length() < 1e-3 {
+                        continue;
+                    }
+                    let ang = ccw(d);
+                    if best.is_none_or(|b| ang > b.0) {
+                        best = Some((ang, s, at_start, d));
+                    }
+                }
+                best?
+            };
+            // Interior angle on the left: counter-clockwise from the leaving to the arriving end.
+            let interior = std::f64::consts::TAU - ang;
+            turning += std::f64::consts::PI - interior;
+            let next = HalfEdge { segment: s, forward: at_start };
+            let nn = (nv - d * nv.dot(d)).normalize_or_zero();
+            if nn == DVec3::ZERO {
+                return None;
+            }
+            if v == first {
+                let holonomy = nn.angle_between(n0);
+                let inward = (0..cycle.len())
+                    .map(|k| self.corner_inward(&cycle, k).unwrap_or_else(|| inward(mids[k].0, mids[k].1, k, &samples)))
+                    .collect();
+                return Some(Trace { cycle, normals, inward, turning, holonomy });
+            }
+            if cycle.len() >= MAX_CYCLE || cycle.iter().any(|c| c.segment == s) {
+                return None;
+            }
+            h = next;
+            n = nn;
+        }
+    }
+}
