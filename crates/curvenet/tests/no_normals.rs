@@ -67,8 +67,8 @@ fn sampled_meshes_without_normals_are_within_three_times_the_error_with() {
 #[test]
 fn sketches_without_normals_surface_through_their_strokes() {
     use curvenet::metrics::MeshDistance;
-    // The shield stopped on folded patches before the cycles were chosen together (and the
-    // hat surfaced wrong patches across its brim): both are the search's now, no fallback.
+    // The shield stopped on overlapping patches before the cycles were chosen together; all
+    // five are the search's now, none falls back to the rotation walk.
     for name in ["computer-mouse.obj", "hat.obj", "teapot.obj", "vacuum.obj", "shield.obj"] {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/sketches").join(name);
         let net = curvenet::io::read_network(&path).unwrap();

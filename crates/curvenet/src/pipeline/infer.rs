@@ -65,11 +65,14 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
     infer(network, options, true)
 }
 
-/// Normal inference and preparation for a network that needs it, with the cycles chosen
-/// globally ([`crate::topology::search`]); where that choice cannot be surfaced (its own
-/// error, or the preparation's), inference again with the patches of the rotation walk on the
-/// inferred normals (\[CG\] §3.2, as before the search), with a warning that says why. An
-/// error of that second path is the run's. `None` for a network that has all its normals.
+/// Normal inference and preparation for a network that needs it. Two choices of the patches
+/// are made: the cycles chosen over the whole network ([`crate::topology::search`]) and the
+/// rotation walk on the inferred normals (\[CG\] §3.2, as before the search). The search's is
+/// tried first unless the walk's runs along clearly more of the sketch (2 % of its length:
+/// the greedy search leaves open what it cannot justify, a thin closed part such as a
+/// sketched ear among it); where the first cannot be surfaced (its own error or the
+/// preparation's), the other, with a warning that says why. When neither can, the walk's
+/// error is the run's. `None` for a network that has all its normals.
 pub(crate) fn infer_and_prepare(
     network: &Network,
     options: &Options,
@@ -78,21 +81,43 @@ pub(crate) fn infer_and_prepare(
     if !needs_inference(network, options) {
         return Ok((None, prepare(network, options, None, progress)?));
     }
-    let searched = infer(network, options, true).and_then(|i| {
-        let p = prepare(&i.network, options, i.cycles.as_deref(), &mut *progress).map_err(explain)?;
-        Ok((i, p))
-    });
-    match searched {
+    let searched = infer(network, options, true);
+    let walked = infer(network, options, false);
+    // Both inferences are the run's work: the one used reports the time of the two.
+    let seconds: f64 = [&searched, &walked].iter().filter_map(|r| r.as_ref().ok()).map(|i| i.report.seconds).sum();
+    let search_first = match (&searched, &walked) {
+        (Ok(s), Ok(w)) => s.report.patched_share + 0.02 >= w.report.patched_share,
+        (Ok(_), Err(_)) => true,
+        (Err(_), _) => false,
+    };
+    let attempt = |mut i: Inferred, progress: Progress<'_>| {
+        i.report.seconds = seconds;
+        let p = prepare(&i.network, options, i.cycles.as_deref(), progress).map_err(explain)?;
+        Ok::<_, crate::Error>((i, p))
+    };
+    let (first, second) = if search_first { (searched, walked) } else { (walked, searched) };
+    let first = first.and_then(|i| attempt(i, &mut *progress));
+    match first {
         Ok((i, p)) => Ok((Some(i), p)),
         Err(e) => {
-            let mut i = infer(network, options, false)?;
-            let p = prepare(&i.network, options, None, progress).map_err(explain)?;
-            i.report.walk_fallback = true;
-            i.warnings.push(Warning::new(format!(
-                "the patches chosen over the whole network could not be surfaced ({e}); they were found by the \
-                 rotation walk on the inferred normals instead: check the result"
-            )));
-            Ok((Some(i), p))
+            // The second choice; when it fails too, the walk's error stands (as before the
+            // search).
+            let second = second.and_then(|i| attempt(i, &mut *progress));
+            match second {
+                Ok((mut i, p)) => {
+                    let (this, other) = if search_first {
+                        ("the rotation walk on the inferred normals", "chosen over the whole network")
+                    } else {
+                        ("chosen over the whole network", "of the rotation walk on the inferred normals")
+                    };
+                    i.warnings.push(Warning::new(format!(
+                        "the patches {other} could not be surfaced ({e}); they were found by {this} instead: check \
+                         the result"
+                    )));
+                    Ok((Some(i), p))
+                }
+                Err(e2) => Err(if search_first { e2 } else { e }),
+            }
         }
     }
 }
@@ -222,8 +247,30 @@ fn infer(network: &Network, options: &Options, search: bool) -> Result<Inferred>
         report.chosen_cycles = k.len();
         report.cycles_seconds = cycles_seconds;
     }
+    report.patched_share = patched_share(&trimmed, &patches);
+    report.walk_fallback = !search;
     report.seconds = seconds_since(start);
     Ok(Inferred { network, report, warnings, cycles })
+}
+
+/// The share of the length of the segments of `g` that `patches` (or the boundary loops that
+/// the preparation closes on their own) run along: how much of the sketch a choice of cycles
+/// surfaces, before anything is solved.
+fn patched_share(g: &Graph, patches: &[Patch]) -> f64 {
+    let mut used: Vec<bool> = g.segments.iter().map(|s| s.boundary).collect();
+    patches.iter().flat_map(|p| p.half_edges()).for_each(|h| used[h.segment] = true);
+    let length = |s: &crate::topology::Segment| {
+        let c = &g.curves[s.curve];
+        let m = c.points.len();
+        (s.first..s.last).map(|i| (c.points[(i + 1) % m] - c.points[i % m]).length()).sum::<f64>()
+    };
+    let total: f64 = g.segments.iter().map(length).sum();
+    let on: f64 = g.segments.iter().zip(&used).filter(|(_, u)| **u).map(|(s, _)| length(s)).sum();
+    if total > 0.0 {
+        on / total
+    } else {
+        1.0
+    }
 }
 
 /// The cycles of `g` chosen globally ([`crate::topology::search`], on `g` with its dangling

@@ -120,9 +120,12 @@ pub struct InferredNormals {
     pub cycles_repaired_nodes: usize,
     /// Seconds of the global cycle search.
     pub cycles_seconds: f64,
-    /// The cycles chosen over the whole network could not be surfaced: the run fell back to
-    /// the rotation walk on the inferred normals (a warning says why).
+    /// The patches are the rotation walk's on the inferred normals, not the cycles chosen over
+    /// the whole network: those could not be surfaced (a warning says why), or the walk's run
+    /// along clearly more of the sketch.
     pub walk_fallback: bool,
+    /// The share of the network's segment length that the patches of this inference run along.
+    pub patched_share: f64,
     /// Seconds of the whole inference.
     pub seconds: f64,
 }

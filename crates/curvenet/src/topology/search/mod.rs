@@ -10,16 +10,17 @@
 //! 1. **Candidates** ([`trace`]): from each segment, one face on each side, traced with a
 //!    normal carried along the face itself rather than the network's (at a junction whose
 //!    curves lie in one plane, the plane's normal with the carried one's sign); a trace that
-//!    comes back to its first node closes there (petals touching at a flower's centre).
+//!    comes back to its first node closes there (petals touching at a flower's centre); where
+//!    that path meets a node twice, the trace backs up and tries the next neighbour.
 //! 2. **Cost**: how far the face is from a patch of a smooth surface — its total turning
 //!    (2π for a flat disk, 2π − ∫K on a curved one, Gauss–Bonnet; a face traced on the wrong
 //!    side of a junction turns by much less or much more), how far its normal comes back
-//!    from where it started after one turn (the twist along it), and a hundredth per segment.
+//!    from where it started after one turn (the twist along it), and a twentieth per segment.
 //! 3. **Search**: the cycles in order of cost, each kept when every segment it runs along
 //!    still bounds fewer than two kept patches (one for a boundary curve), when it does not
 //!    fold onto a kept patch across a shared segment (the directions from the segment into
-//!    the two faces less than 60° apart: the outside face of an open sheet, the flat disk
-//!    under a shallow dome — the dihedral test of Zhuang et al.), and when it can be oriented
+//!    the two faces, at its end nodes, less than 60° apart: the outside face of an open sheet,
+//!    the flat disk under a shallow dome — the dihedral test of Zhuang et al.), and when it can be oriented
 //!    as the kept patches it shares segments with (a union–find with parities: patches that
 //!    share a segment run along it in opposite directions) — greedy best-first over the
 //!    candidates (Zhuang et al. rank the pairings the same way and search the best set; the
@@ -50,8 +51,8 @@ pub struct Chosen {
     pub cycle: Vec<HalfEdge>,
     /// The normal at the start node of each half-edge.
     pub normals: Vec<DVec3>,
-    /// The direction into the patch at the middle sample of each half-edge.
-    pub inward: Vec<DVec3>,
+    /// Per half-edge: the directions into the patch at its segment's start and end nodes.
+    pub inward: Vec<[DVec3; 2]>,
     /// The candidate's cost (module documentation, step 2).
     pub cost: f64,
 }
@@ -135,11 +136,12 @@ fn key(cycle: &[HalfEdge]) -> Vec<usize> {
 }
 
 /// The cost of a traced face (module documentation, step 2): `|turning − 2π| / π` plus the
-/// holonomy over π, plus a hundredth per segment (of two equal faces, the smaller).
+/// holonomy over π, plus a twentieth per segment (of two equal faces the smaller; a long
+/// cycle around a whole part of a sketch comes after its cells).
 fn cost(t: &Trace) -> f64 {
     (t.turning - std::f64::consts::TAU).abs() / std::f64::consts::PI
         + t.holonomy / std::f64::consts::PI
-        + 0.01 * t.cycle.len() as f64
+        + 0.05 * t.cycle.len() as f64
 }
 
 /// Chooses the cycles of `g` (module documentation); `splines[c]` is the spline of
@@ -198,7 +200,8 @@ pub fn choose_cycles(g: &Graph, splines: &[CurveSpline]) -> Choice {
             for &(j, kj) in &on[h.segment] {
                 let hj = patches[j].cycle[kj];
                 let turn = hj.forward == h.forward;
-                folds |= patches[j].inward[kj].dot(t.inward[k]) > FOLD_COS;
+                let (a, b) = (patches[j].inward[kj], t.inward[k]);
+                folds |= 0.5 * (a[0].dot(b[0]) + a[1].dot(b[1])) > FOLD_COS;
                 links.push((j, turn));
             }
         }
@@ -230,7 +233,8 @@ pub fn choose_cycles(g: &Graph, splines: &[CurveSpline]) -> Choice {
 }
 
 /// Two patches that share a segment fold onto each other when the directions from the segment
-/// into each of them (towards their centroids, across the segment) are less than 60° apart:
+/// into each of them (at its two end nodes, [`trace`]'s `corner_inward`; averaged) are less
+/// than 60° apart:
 /// the outside face of an open sheet seen against the sheet, the flat disk under a shallow
 /// dome. Smooth continuations (180°) and creases down to 60° (a box's 90° edges) are kept.
 const FOLD_COS: f64 = 0.5;

@@ -19,6 +19,45 @@ use crate::geom::DVec3;
 /// The longest cycle traced, in segments: longer ones are not patches of a sketch.
 pub(super) const MAX_CYCLE: usize = 48;
 
+/// Choices tried at each node of a trace: the rotation's clockwise neighbour, then the next.
+const BRANCHES: usize = 2;
+
+/// Steps (half-edges appended) of one trace in all, its dead ends included.
+const STEPS: usize = 96;
+
+/// A face being traced: its half-edges so far and what the cost and the fold test need.
+#[derive(Default)]
+struct Partial {
+    cycle: Vec<HalfEdge>,
+    normals: Vec<DVec3>,
+    /// Every sample of the face with the index of its half-edge (for the inward directions).
+    samples: Vec<(DVec3, usize)>,
+    /// Per half-edge: the node it arrives at.
+    visited: Vec<usize>,
+}
+
+impl Partial {
+    /// Appends half-edge `h` with its start normal `n` and samples `p`, arriving at node `v`.
+    fn push(&mut self, h: HalfEdge, n: DVec3, p: &[DVec3], v: usize) {
+        self.cycle.push(h);
+        self.normals.push(n);
+        let k = self.cycle.len() - 1;
+        self.samples.extend(p.iter().skip(1).map(|&x| (x, k)));
+        self.visited.push(v);
+    }
+
+    /// Removes the last half-edge and all it brought.
+    fn pop(&mut self) {
+        let k = self.cycle.len() - 1;
+        self.cycle.pop();
+        self.normals.pop();
+        self.visited.pop();
+        while self.samples.last().is_some_and(|s| s.1 == k) {
+            self.samples.pop();
+        }
+    }
+}
+
 /// Per-segment geometry and per-node segment ends, for tracing.
 pub(super) struct Walker<'a> {
     g: &'a Graph,
@@ -39,10 +78,10 @@ pub(super) struct Walker<'a> {
 pub(super) struct Trace {
     pub(super) cycle: Vec<HalfEdge>,
     pub(super) normals: Vec<DVec3>,
-    /// Per half-edge: the unit direction from its middle sample into the face (towards the
-    /// centroid of the face's samples, across the tangent), for the fold test between faces
-    /// that share the segment.
-    pub(super) inward: Vec<DVec3>,
+    /// Per half-edge: the unit directions into the face at the segment's start node and at
+    /// its end node (in the segment's own order, whichever way the face runs along it), for
+    /// the fold test between faces that share the segment ([`Walker::corner_inward`]).
+    pub(super) inward: Vec<[DVec3; 2]>,
     /// Total turning of the boundary about the carried normal (radians): 2π for a flat face
     /// traversed counter-clockwise, 2π − ∫K on a curved one (Gauss–Bonnet).
     pub(super) turning: f64,
@@ -146,32 +185,35 @@ impl<'a> Walker<'a> {
         (n.length() > 0.5).then_some(n)
     }
 
-    /// The direction into a face from its half-edge `k`, read off the face's corners at both
-    /// ends of it: the neighbouring half-edges' directions away from the node, across the
-    /// half-edge's tangent there (averaged). `None` where both corners are (nearly) straight
-    /// (sine below 0.3: a smooth loop of short segments), where the corners say nothing.
-    fn corner_inward(&self, cycle: &[HalfEdge], k: usize) -> Option<DVec3> {
+    /// The directions into a face from its half-edge `k` at the segment's start and end
+    /// nodes, read off the face's corners there: the neighbouring half-edge's direction away
+    /// from the node, across the half-edge's tangent. Where the corner is (nearly) straight
+    /// (sine below 0.5: a smooth loop of short segments, a kink) or the face goes on along
+    /// the same curve, towards the nearest sample of the face across the tangent at the node
+    /// ([`inward`]). Both faces of a segment are so compared at the same two places.
+    fn corner_inward(&self, cycle: &[HalfEdge], k: usize, samples: &[(DVec3, usize)]) -> [DVec3; 2] {
         let n = cycle.len();
         let (h, prev, next) = (cycle[k], cycle[(k + n - 1) % n], cycle[(k + 1) % n]);
         let end = |s: usize, at_start: bool| {
             let seg = &self.g.segments[s];
             let v = if at_start { seg.start } else { seg.end };
-            self.ends[v].iter().find(|e| e.0 == s && e.1 == at_start).map(|e| e.2)
+            self.ends[v].iter().find(|e| e.0 == s && e.1 == at_start).map_or(DVec3::ZERO, |e| e.2)
         };
-        // At h's first node: h leaves along `t`, `prev` arrives (its end there points away).
-        // At h's last node: h's end points back along h, `next` leaves.
-        let corners = [
-            (end(h.segment, h.forward)?, end(prev.segment, !prev.forward)?),
-            (end(h.segment, !h.forward)?, end(next.segment, next.forward)?),
-        ];
-        let mut sum = DVec3::ZERO;
-        for (t, d) in corners {
+        let seg = &self.g.segments[h.segment];
+        let (p, _) = &self.paths[h.segment];
+        // h's end at its first node and at its last (pointing away from the node along h),
+        // and the neighbouring half-edge's end there.
+        let at_first = (h.forward, end(h.segment, h.forward), prev, end(prev.segment, !prev.forward));
+        let at_last = (!h.forward, end(h.segment, !h.forward), next, end(next.segment, next.forward));
+        let mut out = [DVec3::ZERO; 2];
+        for (at_start, t, other, d) in [at_first, at_last] {
+            let node = if at_start { p[0] } else { p[p.len() - 1] };
             let across = d - t * d.dot(t);
-            if across.length() > 0.3 {
-                sum += across.normalize();
-            }
+            let same_curve = self.g.segments[other.segment].curve == seg.curve && other.segment != h.segment;
+            out[usize::from(!at_start)] =
+                if across.length() > 0.5 && !same_curve { across.normalize() } else { inward(node, t, k, samples) };
         }
-        (sum.length() > 1e-6).then(|| sum.normalize())
+        out
     }
 
     /// The unit tangent of `h` where it leaves its first node.
@@ -199,88 +241,109 @@ impl<'a> Walker<'a> {
     /// segment ends around it: at a node where sheets touch (petals at the centre of a flower)
     /// that order means nothing, and the cost judges the corner the closing makes.
     pub(super) fn trace(&self, h0: HalfEdge, n0: DVec3) -> Option<Trace> {
-        let g = self.g;
-        let (mut h, mut n) = (h0, n0);
-        let s0 = &g.segments[h0.segment];
+        let s0 = &self.g.segments[h0.segment];
         let first = if h0.forward { s0.start } else { s0.end };
-        let (mut cycle, mut normals, mut mids) = (Vec::new(), Vec::new(), Vec::new());
-        // Every sample of the face with the index of its half-edge, for the inward directions.
-        let mut samples: Vec<(DVec3, usize)> = Vec::new();
-        let mut visited: Vec<usize> = Vec::new();
-        let mut turning = 0.0;
-        loop {
-            cycle.push(h);
-            normals.push(n);
-            let (p, t) = self.path(h);
-            let carried = transport(&p, &t, n);
-            mids.push((p[p.len() / 2], t[t.len() / 2]));
-            samples.extend(p.iter().skip(1).map(|&x| (x, cycle.len() - 1)));
-            for i in 0..t.len().saturating_sub(1) {
-                turning += angle_about(t[i], t[i + 1], carried[i]);
+        let mut partial = Partial::default();
+        let mut budget = STEPS;
+        self.extend(h0, n0, first, h0, n0, 0.0, &mut partial, &mut budget)
+    }
+
+    /// One step of [`Walker::trace`]: appends `h` (carrying the normal `n`, the boundary having
+    /// turned by `turning` so far) to `partial` and goes on from its last node — along the
+    /// clockwise neighbour of the arrival end first, and where no simple cycle comes of that,
+    /// along the next one ([`BRANCHES`] choices per node, [`STEPS`] steps per trace in all: a
+    /// junction of a sketch whose ends lie a little out of order must not cost its faces).
+    /// `partial` is as it was when this returns `None`.
+    #[allow(clippy::too_many_arguments)]
+    fn extend(
+        &self,
+        h0: HalfEdge,
+        n0: DVec3,
+        first: usize,
+        h: HalfEdge,
+        n: DVec3,
+        mut turning: f64,
+        partial: &mut Partial,
+        budget: &mut usize,
+    ) -> Option<Trace> {
+        if *budget == 0 {
+            return None;
+        }
+        *budget -= 1;
+        let g = self.g;
+        let (p, t) = self.path(h);
+        let carried = transport(&p, &t, n);
+        for i in 0..t.len().saturating_sub(1) {
+            turning += angle_about(t[i], t[i + 1], carried[i]);
+        }
+        let seg = &g.segments[h.segment];
+        let (v, arrive_at_start) = if h.forward { (seg.end, false) } else { (seg.start, true) };
+        if v != first && partial.visited.contains(&v) {
+            return None;
+        }
+        let mut nv = *carried.last()?;
+        if let Some(est) = self.planar[v] {
+            if est.dot(nv).abs() > 0.5 {
+                nv = if est.dot(nv) < 0.0 { -est } else { est };
             }
-            let seg = &g.segments[h.segment];
-            let (v, arrive_at_start) = if h.forward { (seg.end, false) } else { (seg.start, true) };
-            if v != first && visited.contains(&v) {
-                return None;
-            }
-            visited.push(v);
-            let mut nv = *carried.last()?;
-            if let Some(est) = self.planar[v] {
-                if est.dot(nv).abs() > 0.5 {
-                    nv = if est.dot(nv) < 0.0 { -est } else { est };
-                }
-            }
-            // The arrival end's tangent points away from v, back along the segment.
-            let a = self.ends[v].iter().find(|e| e.0 == h.segment && e.1 == arrive_at_start)?.2;
-            // Leave along the clockwise neighbour of the arrival end (the largest
-            // counter-clockwise angle from it), or back along `h0` at the first node.
-            let ccw = |d: DVec3| {
-                let ang = angle_about(a, d, nv);
-                if ang <= 0.0 {
-                    ang + std::f64::consts::TAU
-                } else {
-                    ang
-                }
-            };
-            let (ang, s, at_start, d) = if v == first {
-                let d = self.leaving(h0);
-                (ccw(d), h0.segment, h0.forward, d)
+        }
+        // The arrival end's tangent points away from v, back along the segment.
+        let a = self.ends[v].iter().find(|e| e.0 == h.segment && e.1 == arrive_at_start)?.2;
+        // The counter-clockwise angle from the arrival end about `nv`, in (0, 2π].
+        let ccw = |d: DVec3| {
+            let ang = angle_about(a, d, nv);
+            if ang <= 0.0 {
+                ang + std::f64::consts::TAU
             } else {
-                let mut best: Option<(f64, usize, bool, DVec3)> = None;
-                for &(s, at_start, d) in &self.ends[v] {
-                    if s == h.segment && at_start == arrive_at_start {
-                        continue;
-                    }
-                    if (d - nv * d.dot(nv)).length() < 1e-3 {
-                        continue;
-                    }
-                    let ang = ccw(d);
-                    if best.is_none_or(|b| ang > b.0) {
-                        best = Some((ang, s, at_start, d));
-                    }
-                }
-                best?
-            };
+                ang
+            }
+        };
+        // Leave along the clockwise neighbour of the arrival end (the largest counter-clockwise
+        // angle from it), then the next; or back along `h0` at the first node.
+        let options: Vec<(f64, usize, bool, DVec3)> = if v == first {
+            let d = self.leaving(h0);
+            vec![(ccw(d), h0.segment, h0.forward, d)]
+        } else {
+            let mut o: Vec<(f64, usize, bool, DVec3)> = self.ends[v]
+                .iter()
+                .filter(|&&(s, at_start, d)| {
+                    !(s == h.segment && at_start == arrive_at_start) && (d - nv * d.dot(nv)).length() >= 1e-3
+                })
+                .map(|&(s, at_start, d)| (ccw(d), s, at_start, d))
+                .collect();
+            o.sort_by(|x, y| y.0.total_cmp(&x.0));
+            o.truncate(BRANCHES);
+            o
+        };
+        partial.push(h, n, &p, v);
+        for (ang, s, at_start, d) in options {
             // Interior angle on the left: counter-clockwise from the leaving to the arriving end.
-            let interior = std::f64::consts::TAU - ang;
-            turning += std::f64::consts::PI - interior;
-            let next = HalfEdge { segment: s, forward: at_start };
+            let corner = std::f64::consts::PI - (std::f64::consts::TAU - ang);
             let nn = (nv - d * nv.dot(d)).normalize_or_zero();
             if nn == DVec3::ZERO {
-                return None;
+                continue;
             }
             if v == first {
                 let holonomy = nn.angle_between(n0);
-                let inward = (0..cycle.len())
-                    .map(|k| self.corner_inward(&cycle, k).unwrap_or_else(|| inward(mids[k].0, mids[k].1, k, &samples)))
-                    .collect();
-                return Some(Trace { cycle, normals, inward, turning, holonomy });
+                let cycle = partial.cycle.clone();
+                let inward = (0..cycle.len()).map(|k| self.corner_inward(&cycle, k, &partial.samples)).collect();
+                return Some(Trace {
+                    cycle,
+                    normals: partial.normals.clone(),
+                    inward,
+                    turning: turning + corner,
+                    holonomy,
+                });
             }
-            if cycle.len() >= MAX_CYCLE || cycle.iter().any(|c| c.segment == s) {
-                return None;
+            if partial.cycle.len() >= MAX_CYCLE || partial.cycle.iter().any(|c| c.segment == s) {
+                continue;
             }
-            h = next;
-            n = nn;
+            let next = HalfEdge { segment: s, forward: at_start };
+            if let Some(found) = self.extend(h0, n0, first, next, nn, turning + corner, partial, budget) {
+                return Some(found);
+            }
         }
+        partial.pop();
+        None
     }
 }
