@@ -7,7 +7,7 @@
 //! planar junction of a sketch) changes every face through that node, and the run then stops
 //! on folded or overlapping patches. Here every cycle is chosen against all the others:
 //!
-//! 1. **Candidates** ([`trace`]): from each segment, one face on each side, traced with a
+//! 1. **Candidates** (`trace`): from each segment, one face on each side, traced with a
 //!    normal carried along the face itself rather than the network's (at a junction whose
 //!    curves lie in one plane, the plane's normal with the carried one's sign); a trace that
 //!    comes back to its first node closes there (petals touching at a flower's centre); where
@@ -233,7 +233,7 @@ pub fn choose_cycles(g: &Graph, splines: &[CurveSpline]) -> Choice {
 }
 
 /// Two patches that share a segment fold onto each other when the directions from the segment
-/// into each of them (at its two end nodes, [`trace`]'s `corner_inward`; averaged) are less
+/// into each of them (at its two end nodes, `trace`'s `corner_inward`; averaged) are less
 /// than 60° apart:
 /// the outside face of an open sheet seen against the sheet, the flat disk under a shallow
 /// dome. Smooth continuations (180°) and creases down to 60° (a box's 90° edges) are kept.
