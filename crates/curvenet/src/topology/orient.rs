@@ -298,9 +298,6 @@ pub fn follow_patches(g: &mut Graph, splines: &[CurveSpline], known: &[bool], en
                 queue.push_back(w);
             }
         }
-    }
-    if changed > 0 {
-        let tangents: Vec<Vec<DVec3>> = (0..g.curves.len()).map(|c| sample_tangents(g, splines, c)).collect();
         fill_segments(g, &tangents, known);
     }
     changed
@@ -616,8 +613,7 @@ fn fill_segments(g: &mut Graph, tangents: &[Vec<DVec3>], known: &[bool]) {
             continue;
         }
         let (p, t) = segment_path(g, tangents, s);
-        let start = g.nodes[seg.start].normal;
-        let carried = transport(&p, &t, start);
+        let carried = transport(&p, &t, g.nodes[seg.start].normal);
         let end = g.nodes[seg.end].normal;
         let miss = angle_about(*carried.last().unwrap_or(&end), end, *t.last().unwrap_or(&DVec3::Z));
         let frac = arc_fractions(&p);
@@ -627,7 +623,7 @@ fn fill_segments(g: &mut Graph, tangents: &[Vec<DVec3>], known: &[bool]) {
             g.curves[seg.curve].normals[i % m] = n;
         }
         let (first, last) = (seg.first % m, seg.last % m);
-        g.curves[seg.curve].normals[first] = start;
+        g.curves[seg.curve].normals[first] = g.nodes[seg.start].normal;
         g.curves[seg.curve].normals[last] = end;
     }
 }

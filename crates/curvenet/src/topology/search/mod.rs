@@ -66,8 +66,6 @@ pub struct Choice {
     pub uses: Vec<u8>,
     /// Distinct candidate cycles traced.
     pub candidates: usize,
-    /// Segments whose two patches could not be given one orientation (a Möbius-like choice).
-    pub contradictions: Vec<usize>,
 }
 
 impl Choice {
@@ -117,14 +115,6 @@ impl Choice {
                     .collect()
             })
             .collect()
-    }
-
-    /// Leaves out patch `i` (the outside of an open sheet): its segments bound one patch less.
-    pub fn remove(&mut self, i: usize) {
-        let p = self.patches.remove(i);
-        for h in &p.cycle {
-            self.uses[h.segment] -= 1;
-        }
     }
 }
 
@@ -221,13 +211,18 @@ pub fn choose_cycles(g: &Graph, splines: &[CurveSpline]) -> Choice {
             cost: costs[i],
         });
     }
+    // 4. One orientation: each patch turned as its parity says; the parts are the parities'
+    // sets.
+    let mut parts: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
     for (f, p) in patches.iter_mut().enumerate() {
-        if parity.find(f).1 {
+        let (root, odd) = parity.find(f);
+        if odd {
             *p = flipped(p);
         }
+        parts.entry(root).or_default().push(f);
     }
-    let mut choice = Choice { patches, uses, candidates: traces.len(), contradictions: Vec::new() };
-    orient(g, &mut choice);
+    let mut choice = Choice { patches, uses, candidates: traces.len() };
+    face_outward(g, &mut choice, parts.values());
     canonical_order(&mut choice.patches);
     choice
 }
@@ -332,62 +327,13 @@ fn flipped(p: &Chosen) -> Chosen {
     Chosen { cycle, normals, inward, cost: p.cost }
 }
 
-/// Step 4 of the module documentation: one orientation for the chosen patches.
-fn orient(g: &Graph, choice: &mut Choice) {
-    let np = choice.patches.len();
-    // Per segment: the patches on it, with the direction they run along it.
-    let mut on: Vec<Vec<(usize, bool)>> = vec![Vec::new(); g.segments.len()];
-    for (i, p) in choice.patches.iter().enumerate() {
-        for h in &p.cycle {
-            on[h.segment].push((i, h.forward));
-        }
-    }
-    let mut flip: Vec<Option<bool>> = vec![None; np];
-    let mut component = vec![usize::MAX; np];
-    let mut parts: Vec<Vec<usize>> = Vec::new();
-    for root in 0..np {
-        if flip[root].is_some() {
-            continue;
-        }
-        flip[root] = Some(false);
-        component[root] = parts.len();
-        let mut members = vec![root];
-        let mut queue = std::collections::VecDeque::from([root]);
-        while let Some(i) = queue.pop_front() {
-            let fi = flip[i].unwrap_or(false);
-            for h in &choice.patches[i].cycle {
-                let dir_i = h.forward != fi;
-                for &(j, fwd) in &on[h.segment] {
-                    if j == i {
-                        continue;
-                    }
-                    // Opposite directions along the shared segment once both are flipped.
-                    let want = fwd == dir_i; // j must flip to run against i
-                    match flip[j] {
-                        None => {
-                            flip[j] = Some(want);
-                            component[j] = parts.len();
-                            members.push(j);
-                            queue.push_back(j);
-                        }
-                        Some(f) if f != want => choice.contradictions.push(h.segment),
-                        _ => {}
-                    }
-                }
-            }
-        }
-        parts.push(members);
-    }
-    choice.contradictions.sort_unstable();
-    choice.contradictions.dedup();
-    for (i, f) in flip.iter().enumerate() {
-        if *f == Some(true) {
-            choice.patches[i] = flipped(&choice.patches[i]);
-        }
-    }
+/// Step 4 of the module documentation, for patches already oriented alike within each of
+/// their `parts`: each closed part turned outward, each open one to the side most of the
+/// network's node normals point to.
+fn face_outward<'a>(g: &Graph, choice: &mut Choice, parts: impl Iterator<Item = &'a Vec<usize>>) {
     // Closed parts outward: the volume the patches enclose (fans from their centroids, about
     // the part's centroid) is positive when the cycles run counter-clockwise seen from outside.
-    for members in &parts {
+    for members in parts {
         let closed = members.iter().all(|&i| choice.patches[i].cycle.iter().all(|h| choice.uses[h.segment] == 2));
         let loops: Vec<Vec<DVec3>> = members.iter().map(|&i| cycle_points(g, &choice.patches[i].cycle)).collect();
         let all: Vec<DVec3> = loops.iter().flatten().copied().collect();
@@ -414,7 +360,7 @@ fn orient(g: &Graph, choice: &mut Choice) {
             agree < 0.0
         };
         if turn {
-            for &i in members {
+            for &i in members.iter() {
                 choice.patches[i] = flipped(&choice.patches[i]);
             }
         }

@@ -55,7 +55,6 @@ fn check_manifold_and_oriented(g: &Graph, c: &Choice) {
         }
         assert_eq!(c.uses[s] as usize, r.len());
     }
-    assert!(c.contradictions.is_empty(), "{:?}", c.contradictions);
 }
 
 #[test]
