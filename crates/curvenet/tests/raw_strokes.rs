@@ -101,3 +101,30 @@ fn clean_examples_give_the_same_surface_with_consolidation_on_and_off() {
         assert_eq!(a.mesh.faces, b.mesh.faces, "{name}");
     }
 }
+
+/// The raw CASSIE strokes (`data/sketches/raw`): whatever surfaces stays near the strokes — no
+/// vertex farther outside their bounding box than half its diagonal. The raw `flower` made a
+/// spike twice the sketch's size out of a folded patch and exited 0 before the reach check
+/// (`pipeline::coverage::check_reach`); now it is refused.
+#[test]
+fn raw_sketches_never_give_a_surface_far_outside_the_strokes() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/sketches/raw");
+    for name in ["computer-mouse", "flower", "hat", "shield", "teapot", "vacuum"] {
+        let net = curvenet::io::read_network(&dir.join(format!("{name}.obj"))).unwrap();
+        let b = net.bounding_box();
+        let margin = 0.5 * b.diagonal();
+        match surface(&net, &Options::default()) {
+            Ok(s) => {
+                let far = s.mesh.positions.iter().map(|&x| (b.min - x).max(x - b.max).max(DVec3::ZERO).length());
+                let far = far.fold(0.0, f64::max);
+                eprintln!(
+                    "{name}: surfaced, reach {:.2}, farthest vertex {:.2} diagonals outside",
+                    s.stats.reach,
+                    far / b.diagonal()
+                );
+                assert!(far <= margin, "{name}: a vertex {:.2} diagonals outside the strokes", far / b.diagonal());
+            }
+            Err(e) => eprintln!("{name}: {e}"),
+        }
+    }
+}

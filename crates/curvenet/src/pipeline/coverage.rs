@@ -1,10 +1,15 @@
-//! How much of the input the surface passes near: the check that a run which left strokes out
-//! (dangling, duplicates, curves that bound no patch) says so, and refuses a surface that
-//! misses most of the sketch (docs/design.md §14).
+//! How the surface fits its input, both ways:
+//! - **coverage**, how much of the input the surface passes near: a run which left strokes out
+//!   (dangling, duplicates, curves that bound no patch) says so, and a surface that misses most
+//!   of the sketch is refused (docs/design.md §14);
+//! - **reach**, how far each patch strays from its own boundary curves: a patch whose solve ran
+//!   away (a spike or balloon far outside the curves, from a degenerate cycle or a folded
+//!   domain) is refused instead of written (docs/design.md §14).
 
 use crate::error::{Error, Result, Warning};
 use crate::geom::distance::MeshDistance;
 use crate::geom::mesh::Mesh;
+use crate::geom::{Aabb, DVec3};
 use crate::network::{curve_label, Network};
 
 /// A stroke point counts as on the surface within this fraction of the bounding-box diagonal.
@@ -72,4 +77,90 @@ pub fn check_coverage(mesh: &Mesh, network: &Network, warnings: &mut Vec<Warning
     }
     warnings.push(Warning::new(text).curve(out[0]));
     Ok(all)
+}
+
+/// A patch whose surface lies farther than this many times its boundary's bounding-box
+/// diagonal from that box has run away. A hemisphere over a circle reaches 0.35 of the circle's
+/// box diagonal; the most measured on a surface people expect is in docs/design.md §14.
+pub const MAX_REACH: f64 = 1.0;
+
+/// Per patch of `mesh`: the largest distance of its vertices from the bounding box of its curve
+/// vertices, over that box's diagonal (0 for a patch without curve vertices).
+pub fn patch_reach(mesh: &Mesh) -> Vec<f64> {
+    reach_of(&mesh.positions, &mesh.faces, &mesh.face_patch, mesh.num_curve)
+}
+
+/// [`patch_reach`] of the faces `faces` with patches `face_patch` at `positions`, the first
+/// `num_curve` of which lie on curves.
+fn reach_of(positions: &[DVec3], faces: &[[u32; 3]], face_patch: &[u32], num_curve: usize) -> Vec<f64> {
+    let patches = face_patch.iter().map(|&p| p as usize + 1).max().unwrap_or(0);
+    let mut boxes = vec![Aabb::empty(); patches];
+    for (f, &p) in faces.iter().zip(face_patch) {
+        for &v in f.iter().filter(|&&v| (v as usize) < num_curve) {
+            boxes[p as usize].extend(positions[v as usize]);
+        }
+    }
+    let mut reach = vec![0.0f64; patches];
+    for (f, &p) in faces.iter().zip(face_patch) {
+        let b = &boxes[p as usize];
+        let d = b.diagonal();
+        if !(d > 0.0) {
+            continue;
+        }
+        for &v in f {
+            let x = positions[v as usize];
+            let out = (b.min - x).max(x - b.max).max(DVec3::ZERO).length();
+            reach[p as usize] = reach[p as usize].max(out / d);
+        }
+    }
+    reach
+}
+
+/// Refuses a surface with a patch that ran away ([`MAX_REACH`]); returns the largest reach.
+pub fn check_reach(mesh: &Mesh) -> Result<f64> {
+    let reach = patch_reach(mesh);
+    let worst = (0..reach.len()).max_by(|&a, &b| reach[a].total_cmp(&reach[b]));
+    match worst {
+        Some(p) if !(reach[p] <= MAX_REACH) => Err(Error::numerical(format!(
+            "patch {p}: its surface runs away from its curves, to {:.1} times their extent outside them (a spike \
+             or balloon, from a cycle that bounds no sensible surface or a domain that folded over); it is not \
+             written. The run's warnings say where its patching fell back; normals given for its curves fix their sides",
+            reach[p]
+        ))
+        .patch(p)),
+        Some(p) => Ok(reach[p]),
+        None => Ok(0.0),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A square of curve vertices 0..4 around a free vertex 4 at height `h`, as one patch.
+    fn pyramid(h: f64) -> Vec<f64> {
+        let positions = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(0.5, 0.5, h),
+        ];
+        let faces = vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
+        reach_of(&positions, &faces, &[0; 4], 4)
+    }
+
+    #[test]
+    fn reach_is_the_distance_outside_the_curves_box_over_its_diagonal() {
+        assert_eq!(pyramid(0.0), vec![0.0]);
+        // The box of the square is flat; a dome of height 0.5 reaches 0.5 / √2.
+        assert!((pyramid(0.5)[0] - 0.5 / 2f64.sqrt()).abs() < 1e-12);
+        assert!((pyramid(-3.0)[0] - 3.0 / 2f64.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_dome_stays_a_spike_runs_away() {
+        assert!(pyramid(0.5)[0] <= MAX_REACH);
+        assert!(pyramid(2.0)[0] > MAX_REACH);
+    }
 }

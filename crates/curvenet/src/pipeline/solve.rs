@@ -187,7 +187,9 @@ pub(crate) fn solve_prepared(
     timings.factor = st.factor;
     timings.solve = st.solve;
     progress("solve", st.operators + st.factor + st.solve, options.method.name());
-    Ok(finish(prepared, options, result, (iteration_report, coarse), warnings, timings, base, start))
+    let mut surface = finish(prepared, options, result, (iteration_report, coarse), warnings, timings, base, start);
+    surface.stats.reach = super::coverage::check_reach(&surface.mesh)?;
+    Ok(surface)
 }
 
 /// Normal-control's 3D iterations from `result`, with the iterations object `state` keeps
@@ -261,6 +263,7 @@ fn finish(
         inferred_normals: None,
         consolidation: None,
         coverage: None,
+        reach: 0.0,
         peak_memory_bytes: None,
         timings,
     };

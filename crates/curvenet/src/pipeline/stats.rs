@@ -87,6 +87,10 @@ pub struct Stats {
     /// diagonal, `pipeline::coverage`), where strokes may have been left out: measured when
     /// normals were inferred, strokes consolidated or the run warned.
     pub coverage: Option<f64>,
+    /// How far the farthest patch strays outside its boundary curves' bounding box, over that
+    /// box's diagonal (`pipeline::coverage::patch_reach`); a surface beyond
+    /// `coverage::MAX_REACH` is refused.
+    pub reach: f64,
     /// What consolidation did (`None` with `consolidate = off`).
     pub consolidation: Option<crate::topology::consolidate::Consolidation>,
     /// Seconds per stage.
