@@ -165,14 +165,22 @@ def surface_files(inputs, out_dir, *, client=None, jobs=None, format="ply", pres
     """Surfaces many network files: ``inputs`` (a path, or a list of files, folders and glob
     patterns) into ``out_dir/STEM.FORMAT``; returns a list of dicts, one per input in input
     order, with the fields of a ``curvenet batch`` report line: ``input``, ``output``,
-    ``status`` (``"ok"``/``"error"``), ``error_kind``, ``error`` and ``exit_code`` of a failure,
-    ``warnings``, ``seconds``, ``stats``. A bad network never stops the others.
+    ``status`` (``"ok"``, ``"error"``, or ``"crashed"`` when the process surfacing it died),
+    ``error_kind``, ``error`` and ``exit_code`` of a failure, ``warnings``, ``seconds``,
+    ``stats``, and what the mesh was made from (``input_hash``, ``options``, ``output_bytes``,
+    ``output_hash``). A bad network, or a worker dying on one, never stops the others: every
+    input's report comes back.
 
     Without ``client`` the files are surfaced by ``jobs`` local processes (default: the number
-    of cores; each with cores / jobs solver threads). With a ``dask.distributed.Client`` they
-    are mapped over the cluster's workers (every worker needs curvenet installed, and
-    ``out_dir`` must be a folder every worker can write: a shared file system). The options are
-    those of :func:`surface` and are checked here, before any work (``UsageError``).
+    of cores; each with cores / jobs solver threads); an input whose process dies is tried
+    again alone, then reported as crashed. With a ``dask.distributed.Client`` they are mapped
+    over the cluster's workers (every worker needs curvenet installed, and ``out_dir`` must be
+    a folder every worker can write: a shared file system); an input whose workers die as often
+    as Dask allows (``KilledWorker``) is reported as crashed. The options are those of
+    :func:`surface` and are checked here, before any work (``UsageError``), as is every output
+    path against the inputs: no output may overwrite an input. One run writes into
+    ``out_dir`` at a time (a lock; ``UsageError`` when another holds it); temporary files that
+    killed runs left there are removed.
     """
     import os as _os
 
@@ -183,26 +191,91 @@ def surface_files(inputs, out_dir, *, client=None, jobs=None, format="ply", pres
     if isinstance(inputs, (str, _os.PathLike)):
         inputs = [inputs]
     out_dir = _os.fspath(out_dir)
-    # The library expands and names them, as `curvenet batch` does.
+    # The library expands and names them, as `curvenet batch` does, and checks them apart.
     plan = _curvenet._plan_files([_os.fspath(i) for i in inputs], out_dir, format)
     _os.makedirs(out_dir, exist_ok=True)
     work = [(i, o, preset, named) for i, o in plan]
     if not work:
         return []
-    if client is not None:
-        futures = client.map(_surface_file, work, pure=False)
-        return client.gather(futures)
+    lock, _removed = _curvenet._lock_folder(out_dir)
+    try:
+        if client is not None:
+            return _on_dask(client, work)
+        return _in_processes(work, jobs)
+    finally:
+        lock.release()
+
+
+def _crashed(job, why):
+    """The report of an input whose worker process died."""
+    input_, _output, _preset, _named = job
+    return {"input": input_, "output": None, "status": "crashed", "error_kind": "crashed",
+            "error": f"{input_}: the process surfacing it died ({why}); the other inputs went on",
+            "exit_code": None, "warnings": [], "seconds": 0.0, "stats": None}
+
+
+def _on_dask(client, work, task=None):
+    """``work`` mapped over a Dask cluster: each future's report, or crashed, in input order."""
+    futures = client.map(task or _surface_file, work, pure=False)
+    reports = []
+    for job, future in zip(work, futures):
+        try:
+            reports.append(future.result())
+        except Exception as e:  # KilledWorker and other worker faults: that input's failure
+            reports.append(_crashed(job, f"{type(e).__name__}: {e}"))
+    return reports
+
+
+def _in_processes(work, jobs, task=None):
+    """``work`` in ``jobs`` local processes, at most ``jobs`` inputs in flight. A child that
+    dies breaks the pool: the inputs in flight then are tried again, each in a process of its
+    own (crashed if that one dies too), and the rest go on in a new pool."""
     import concurrent.futures as _cf
     import multiprocessing as _mp
+    import os as _os
+    from concurrent.futures.process import BrokenProcessPool
 
+    task = task or _surface_file
     cores = _os.cpu_count() or 1
     jobs = max(1, min(int(jobs or cores), len(work)))
-    if jobs == 1:
+    if jobs == 1 and task is _surface_file:
         return [_surface_file(w) for w in work]
     ctx = _mp.get_context("spawn")  # no fork of a process that holds solver threads
-    with _cf.ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_init_worker,
-                                 initargs=(max(1, cores // jobs),)) as pool:
-        return list(pool.map(_surface_file, work))
+
+    def pool(n):
+        return _cf.ProcessPoolExecutor(n, mp_context=ctx, initializer=_init_worker,
+                                       initargs=(max(1, cores // n),))
+
+    reports = [None] * len(work)
+    todo = list(range(len(work)))
+    while todo:
+        suspects = []
+        with pool(jobs) as p:
+            flight = {}
+            while (todo or flight) and not suspects:
+                while todo and len(flight) < jobs:
+                    k = todo.pop(0)
+                    flight[p.submit(task, work[k])] = k
+                done, _ = _cf.wait(flight, return_when=_cf.FIRST_COMPLETED)
+                for f in done:
+                    k = flight.pop(f)
+                    try:
+                        reports[k] = f.result()
+                    except BrokenProcessPool:
+                        suspects.append(k)
+            if suspects:  # the pool is broken: everything in flight with it
+                for f, k in flight.items():
+                    try:
+                        reports[k] = f.result()
+                    except BrokenProcessPool:
+                        suspects.append(k)
+        for k in sorted(suspects):
+            try:
+                with pool(1) as alone:
+                    reports[k] = alone.submit(task, work[k]).result()
+            except BrokenProcessPool as e:
+                reports[k] = _crashed(work[k], f"BrokenProcessPool: {e}")
+    return reports
 
 
 def infer_normals(network, *, all=False, snap=None):

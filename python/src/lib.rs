@@ -317,10 +317,36 @@ fn _surface_file(
 fn _plan_files(inputs: Vec<String>, out_dir: &str, format: &str) -> PyResult<Vec<(String, String)>> {
     use curvenet::pipeline::files::{expand_inputs, plan_outputs};
     let files = expand_inputs(&inputs).map_err(err)?;
-    Ok(plan_outputs(&files, std::path::Path::new(out_dir), format)
-        .into_iter()
-        .map(|j| (j.input.display().to_string(), j.output.display().to_string()))
-        .collect())
+    let jobs = plan_outputs(&files, std::path::Path::new(out_dir), format);
+    let mut outputs: Vec<std::path::PathBuf> = jobs.iter().map(|j| j.output.clone()).collect();
+    outputs.push(std::path::Path::new(out_dir).join(curvenet::io::folder::LOCK_FILE));
+    curvenet::io::folder::check_outputs_apart(&files, &outputs).map_err(err)?;
+    Ok(jobs.into_iter().map(|j| (j.input.display().to_string(), j.output.display().to_string())).collect())
+}
+
+/// The lock of an output folder (`curvenet::io::folder::FolderLock`), held until `release()`
+/// or until the object is collected; the process's end releases it too.
+#[pyclass]
+struct _FolderLock {
+    inner: Option<curvenet::io::folder::FolderLock>,
+}
+
+#[pymethods]
+impl _FolderLock {
+    fn release(&mut self) {
+        self.inner = None;
+    }
+}
+
+/// Locks the existing folder `out_dir` for one batch (a `UsageError` when another run holds
+/// it) and removes the temporary files that dead runs left in it; returns the lock and the
+/// number of files removed.
+#[pyfunction]
+fn _lock_folder(out_dir: &str) -> PyResult<(_FolderLock, usize)> {
+    let dir = std::path::Path::new(out_dir);
+    let lock = curvenet::io::folder::FolderLock::acquire(dir).map_err(err)?;
+    let removed = curvenet::io::folder::remove_stale_temporaries(dir).len();
+    Ok((_FolderLock { inner: Some(lock) }, removed))
 }
 
 /// The option table: `(name, value_name, choices, help, default)` per option.
@@ -619,6 +645,8 @@ fn _curvenet(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_surface, m)?)?;
     m.add_function(wrap_pyfunction!(_surface_file, m)?)?;
     m.add_function(wrap_pyfunction!(_plan_files, m)?)?;
+    m.add_function(wrap_pyfunction!(_lock_folder, m)?)?;
+    m.add_class::<_FolderLock>()?;
     m.add_function(wrap_pyfunction!(_infer_normals, m)?)?;
     m.add_function(wrap_pyfunction!(_consolidate, m)?)?;
     m.add_function(wrap_pyfunction!(_harmonic, m)?)?;

@@ -445,6 +445,84 @@ def test_surface_files_on_a_dask_cluster(tmp_path):
     _check_reports(reports, folder)
 
 
+def _crash_work(tmp_path):
+    """Jobs as ``surface_files`` plans them: three good networks, one whose process dies."""
+    folder = _batch_folder(tmp_path)
+    (folder / "d.json").unlink()
+    (folder / "e.net").unlink()
+    (folder / "boom.json").write_text((folder / "a.json").read_text())
+    plan = curvenet._curvenet._plan_files([str(folder)], str(tmp_path / "out"), "ply")
+    (tmp_path / "out").mkdir()
+    return [(i, o, "fast", [("vertices", "3000")]) for i, o in plan]
+
+
+def _check_crash_reports(reports, work):
+    assert [r["input"] for r in reports] == [w[0] for w in work]
+    for r in reports:
+        if "boom" in r["input"]:
+            assert r["status"] == "crashed" and r["output"] is None and r["input"] in r["error"], r
+        else:
+            assert r["status"] == "ok", r
+            assert Path(r["output"]).stat().st_size == r["output_bytes"]
+
+
+def test_surface_files_survive_a_child_that_dies(tmp_path):
+    """Issue 29: one input's dying process is that input's crash; every other report comes
+    back, in input order (before, BrokenProcessPool lost them all)."""
+    import crashing_task
+    work = _crash_work(tmp_path)
+    reports = curvenet._in_processes(work, 2, task=crashing_task.task)
+    _check_crash_reports(reports, work)
+
+
+def test_surface_files_survive_a_dask_worker_that_dies(tmp_path):
+    """Issue 29: a worker killed on one input (``KilledWorker`` once Dask gives up) is that
+    input's crash; the other reports come back (before, gather raised and returned none)."""
+    distributed = pytest.importorskip("dask.distributed")
+    import cloudpickle
+    import dask
+    import crashing_task
+    cloudpickle.register_pickle_by_value(crashing_task)
+    work = _crash_work(tmp_path)
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}), \
+            distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                     dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        reports = curvenet._on_dask(client, work, task=crashing_task.task)
+    _check_crash_reports(reports, work)
+
+
+def test_surface_files_never_write_over_their_inputs(tmp_path):
+    """Issue 29: an output folder that is the input folder (or links to it), in the inputs'
+    format, is a usage error before any work; the inputs stay byte for byte."""
+    folder = tmp_path / "nets"
+    folder.mkdir()
+    for name in ["sphere", "cube"]:
+        subprocess.run([str(CLI), "example", name, "-o", str(folder / f"{name}.obj")], check=True, capture_output=True)
+    before = {p.name: p.read_bytes() for p in folder.iterdir()}
+    (tmp_path / "link").symlink_to(folder)
+    for out in [folder, tmp_path / "link"]:
+        with pytest.raises(curvenet.UsageError, match="would overwrite the input"):
+            curvenet.surface_files(folder, out, format="obj", preset="fast", vertices=2000)
+        r = subprocess.run([str(CLI), "batch", str(folder), "--out", str(out), "--format", "obj", "-q"],
+                           capture_output=True, text=True)
+        assert r.returncode == 2 and "would overwrite the input" in r.stderr, r.stderr
+    assert {p.name: p.read_bytes() for p in folder.iterdir()} == before
+
+
+def test_one_run_writes_into_a_folder_at_a_time(tmp_path):
+    folder = _batch_folder(tmp_path)
+    out = tmp_path / "out"
+    out.mkdir()
+    lock, _ = curvenet._curvenet._lock_folder(str(out))
+    with pytest.raises(curvenet.UsageError, match="another curvenet run"):
+        curvenet.surface_files(folder, out, preset="fast", vertices=2000)
+    r = subprocess.run([str(CLI), "batch", str(folder), "--out", str(out), "-q"], capture_output=True, text=True)
+    assert r.returncode == 2 and "another curvenet run" in r.stderr, r.stderr
+    lock.release()
+    reports = curvenet.surface_files(folder, out, preset="fast", vertices=2000)
+    assert [r["status"] for r in reports][:3] == ["ok"] * 3
+
+
 def test_progress_callback():
     """The callback sees every stage in order, the 3D iterations among them; its exception is
     raised after the run."""

@@ -5,15 +5,23 @@
 //! factorisation's parallelism, sized so that the jobs together fill the cores), with a memory
 //! budget of its share of the memory available. The report (`DIR/report.jsonl`) gets a line as
 //! each network ends, so an interrupted batch leaves a report `--resume` can continue from.
+//!
+//! Nothing is lost (docs/design.md §10): no output may be an input (checked before any work,
+//! symlinks resolved); one batch writes into a folder at a time (`io::folder::FolderLock`);
+//! inputs are read only if they are regular files (a FIFO does not hang the batch); the
+//! temporary files of killed runs are removed by the next; `--resume` keeps a mesh only when it
+//! is whole and was made from the same input with the same options (`pipeline::files::resume`).
 
 use crate::options::{options, SolveArgs};
 use clap::Args;
-use curvenet::pipeline::files::{expand_inputs, plan_outputs, surface_file, FileJob as Job, FileReport};
+use curvenet::io::folder;
+use curvenet::pipeline::files::{
+    expand_inputs, plan_outputs, resume, surface_file, FileJob as Job, FileReport, Resumed,
+};
 use curvenet::Error;
 use serde_json::Value;
-use std::collections::{HashMap, HashSet};
 use std::io::{IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
@@ -35,7 +43,9 @@ pub struct BatchArgs {
     /// Format of the meshes.
     #[arg(long, default_value = "ply", value_parser = ["ply", "obj", "off", "glb"])]
     format: String,
-    /// Skip the inputs that DIR/report.jsonl lists as ok and whose mesh is there.
+    /// Skip the inputs that DIR/report.jsonl lists as ok whose mesh is there, whole and
+    /// unchanged, made from the same input (content hash) with the same options; the others are
+    /// redone, and their report lines say why.
     #[arg(long)]
     resume: bool,
     #[command(flatten)]
@@ -55,34 +65,43 @@ pub fn run(a: &BatchArgs) -> Result<(), Error> {
     if inputs.is_empty() {
         return Err(Error::usage("no network found in the inputs (files, folders of .json/.obj/.net, patterns)"));
     }
-    std::fs::create_dir_all(&a.out).map_err(|e| Error::io(&a.out, e))?;
     let report_path = a.out.join("report.jsonl");
     let jobs = plan_outputs(&inputs, &a.out, &a.format);
-    // Lines kept from an earlier run (--resume): ok, mesh present, input still asked for.
-    let mut kept: Vec<String> = Vec::new();
-    let mut done: HashSet<PathBuf> = HashSet::new();
-    if a.resume {
-        if let Ok(text) = std::fs::read_to_string(&report_path) {
-            let wanted: HashMap<&Path, &Path> = jobs.iter().map(|j| (j.input.as_path(), j.output.as_path())).collect();
-            for line in text.lines() {
-                let Ok(v) = serde_json::from_str::<Value>(line) else { continue };
-                let (Some(input), Some(output)) = (v["input"].as_str(), v["output"].as_str()) else { continue };
-                let input = PathBuf::from(input);
-                if v["status"] == "ok"
-                    && wanted.get(input.as_path()) == Some(&Path::new(output))
-                    && Path::new(output).is_file()
-                    && done.insert(input)
-                {
-                    kept.push(line.to_string());
-                }
+    // Nothing is written over an input: meshes, the report, the lock (symlinks resolved).
+    let mut outputs: Vec<PathBuf> = jobs.iter().map(|j| j.output.clone()).collect();
+    outputs.extend([report_path.clone(), a.out.join(folder::LOCK_FILE)]);
+    folder::check_outputs_apart(&inputs, &outputs)?;
+    std::fs::create_dir_all(&a.out).map_err(|e| Error::io(&a.out, e))?;
+    let _lock = folder::FolderLock::acquire(&a.out)?;
+    let stale = folder::remove_stale_temporaries(&a.out);
+    if !stale.is_empty() && !a.quiet {
+        eprintln!("removed {} temporary file(s) that an interrupted run left in {}", stale.len(), a.out.display());
+    }
+    // Lines kept from an earlier run (--resume): ok, the mesh whole, input and options the same.
+    let resumed = if a.resume {
+        match std::fs::read_to_string(&report_path) {
+            Ok(text) => resume(&text, &jobs, &base),
+            Err(_) => Resumed::default(),
+        }
+    } else {
+        Resumed::default()
+    };
+    let Resumed { kept, done, redone } = resumed;
+    if !a.quiet {
+        for job in &jobs {
+            if let Some(why) = redone.get(&job.input) {
+                eprintln!("redoing {}: {why}", job.input.display());
             }
         }
     }
     let todo: Vec<&Job> = jobs.iter().filter(|j| !done.contains(&j.input)).collect();
     let mut report = std::fs::File::create(&report_path).map_err(|e| Error::io(&report_path, e))?;
+    let mut head = String::new();
     for line in &kept {
-        writeln!(report, "{line}").map_err(|e| Error::io(&report_path, e))?;
+        head.push_str(line);
+        head.push('\n');
     }
+    report.write_all(head.as_bytes()).map_err(|e| Error::io(&report_path, e))?;
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let workers = a.jobs.unwrap_or(cores).clamp(1, todo.len().max(1));
     let threads = (cores / workers).max(1);
@@ -100,16 +119,19 @@ pub fn run(a: &BatchArgs) -> Result<(), Error> {
                 loop {
                     let k = next.fetch_add(1, Ordering::Relaxed);
                     let Some(job) = todo.get(k) else { break };
-                    let report = match &pool {
+                    let mut report = match &pool {
                         Ok(pool) => pool.install(|| surface_file(&job.input, &job.output, &base)),
                         Err(e) => {
                             FileReport::failure(&job.input, &Error::internal(format!("no thread pool: {e}")), 0.0)
                         }
                     };
+                    report.redone = redone.get(&job.input).cloned();
                     let line = serde_json::to_value(&report).unwrap_or(Value::Null);
+                    // One write of the whole line, under the lock of the folder and the mutex.
+                    let text = format!("{line}\n");
                     let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
                     let (report, failed) = &mut *guard;
-                    if let Err(e) = writeln!(report, "{line}").and_then(|_| report.flush()) {
+                    if let Err(e) = report.write_all(text.as_bytes()) {
                         eprintln!(
                             "warning: {}: the report line of {} was not written: {e}",
                             report_path.display(),
@@ -129,12 +151,13 @@ pub fn run(a: &BatchArgs) -> Result<(), Error> {
     let (_, failed) = shared.into_inner().unwrap_or_else(|e| e.into_inner());
     let total = jobs.len();
     eprintln!(
-        "{total} networks: {} ok{}, {} failed, in {:.1} s ({} jobs × {threads} thread{}); report: {}",
+        "{total} networks: {} ok{}, {} failed, in {:.1} s ({} job{} × {threads} thread{}); report: {}",
         total - failed.len(),
         if kept.is_empty() { String::new() } else { format!(" ({} from the earlier run)", kept.len()) },
         failed.len(),
         start.elapsed().as_secs_f64(),
         workers,
+        if workers == 1 { "" } else { "s" },
         if threads == 1 { "" } else { "s" },
         report_path.display()
     );

@@ -116,9 +116,13 @@ enum Command {
 /// temporary files beside the targets, [`curvenet::io::remove_staged_files`]) and exit with
 /// 128 + the signal's number, as the shell reports a killed process. The signals are taken
 /// by a thread of their own (signal-hook), so the cleanup runs outside the signal context.
+/// SIGXFSZ (a file-size limit, `ulimit -f`, reached while writing) is caught and ignored: the
+/// write then fails with an I/O error ("File too large") that the run reports, and the staged
+/// file is removed, instead of the process being killed with nothing said.
 #[cfg(unix)]
 fn clean_up_on_signals() {
-    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGXFSZ};
+    let _ = signal_hook::flag::register(SIGXFSZ, std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false)));
     let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
         return;
     };

@@ -60,11 +60,11 @@ fn a_folder_with_bad_networks_is_reported_line_by_line() {
             assert!(l["stats"]["vertices"].as_u64().unwrap() > 1000, "{l}");
         }
     }
-    // No leftovers: meshes for the good ones, the report, nothing else.
+    // No leftovers: meshes for the good ones, the report, the folder's lock file, nothing else.
     let mut names: Vec<String> =
         std::fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     names.sort();
-    assert_eq!(names, ["a.ply", "b.ply", "c.ply", "d.ply", "report.jsonl"]);
+    assert_eq!(names, [".curvenet.lock", "a.ply", "b.ply", "c.ply", "d.ply", "report.jsonl"]);
 
     // --resume: the four done are kept, the two bad ones tried again, the report still whole.
     let o = curvenet(&["batch", inputs.to_str().unwrap(), "--out", out.to_str().unwrap(), "--fast", "--resume"]);

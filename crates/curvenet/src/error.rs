@@ -84,7 +84,7 @@ pub enum Error {
     },
 
     /// A file could not be read or written.
-    #[error("{path}: {source}")]
+    #[error("{path}: {source}{}", io_hint(source))]
     Io {
         /// The file.
         path: String,
@@ -335,3 +335,14 @@ impl fmt::Display for Warning {
 #[cfg(test)]
 #[path = "tests/error.rs"]
 mod tests;
+
+/// What a user can do about the I/O errors whose operating-system text says little.
+fn io_hint(e: &std::io::Error) -> &'static str {
+    match e.kind() {
+        std::io::ErrorKind::FileTooLarge => {
+            " (the file-size limit of the process, `ulimit -f`, was reached; nothing was written)"
+        }
+        std::io::ErrorKind::StorageFull => " (the disk is full; nothing was written)",
+        _ => "",
+    }
+}

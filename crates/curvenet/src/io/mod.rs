@@ -5,6 +5,7 @@
 //! Every writer is atomic: it writes a temporary file beside the target and renames it, so a
 //! failed run never leaves a half-written file.
 
+pub mod folder;
 mod glb;
 mod json;
 mod mesh;
@@ -68,9 +69,55 @@ pub enum InputKind {
 /// text: binary data such as `/dev/zero`; a PLY without its `ply` line) — before reading the
 /// rest.
 pub fn read_input(path: &Path, kind: InputKind, max: u64) -> Result<Vec<u8>> {
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    read_opened(file, path, kind, max)
+}
+
+/// Opens `path` for reading if it is a regular file, else an input error naming what it is (a
+/// FIFO, socket, device or folder): without blocking, since an ordinary open of a FIFO with no
+/// writer waits forever, and checked on the opened file, so that a file replaced after a
+/// folder was listed is caught too. `curvenet batch` and `surface_files` read their inputs so.
+pub fn open_regular(path: &Path) -> Result<std::fs::File> {
+    let mut open = std::fs::OpenOptions::new();
+    open.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        open.custom_flags(libc::O_NONBLOCK);
+    }
+    let file = open.open(path).map_err(|e| Error::io(path, e))?;
+    let kind = file.metadata().map_err(|e| Error::io(path, e))?.file_type();
+    if kind.is_file() {
+        return Ok(file);
+    }
+    let what = if kind.is_dir() {
+        "a folder"
+    } else {
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::FileTypeExt;
+            if kind.is_fifo() {
+                "a FIFO (named pipe)"
+            } else if kind.is_socket() {
+                "a socket"
+            } else if kind.is_block_device() || kind.is_char_device() {
+                "a device"
+            } else {
+                "not a regular file"
+            }
+        }
+        #[cfg(not(unix))]
+        {
+            "not a regular file"
+        }
+    };
+    Err(Error::input(format!("{}: {what}, not a regular file: only regular files are read here", path.display())))
+}
+
+/// [`read_input`] of an opened `file` (its name `path`, for messages).
+pub fn read_opened(mut file: std::fs::File, path: &Path, kind: InputKind, max: u64) -> Result<Vec<u8>> {
     use std::io::Read;
     let source = path.display().to_string();
-    let mut file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     let mut bytes = Vec::new();
     const HEAD: u64 = 64 << 10;
     (&mut file).take(HEAD.min(max + 1)).read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
@@ -174,7 +221,12 @@ pub fn read_network(path: &Path) -> Result<Network> {
 /// Reads a text file as [`read_input`] does, at most `max` bytes; invalid UTF-8 is a parse error
 /// naming its line and column. A UTF-8 byte-order mark stays in the text: parsers skip it.
 pub fn read_text(path: &Path, max: u64) -> Result<String> {
-    let bytes = read_input(path, InputKind::Text, max)?;
+    text_of(read_input(path, InputKind::Text, max)?, path)
+}
+
+/// The bytes read from `path` as UTF-8 text; invalid UTF-8 is a parse error naming its line and
+/// column.
+pub fn text_of(bytes: Vec<u8>, path: &Path) -> Result<String> {
     String::from_utf8(bytes).map_err(|e| {
         let (line, column) = line_col(&e.as_bytes()[..e.utf8_error().valid_up_to()]);
         Error::Parse { path: path.display().to_string(), line, column, message: "file is not valid UTF-8 text".into() }
