@@ -23,6 +23,8 @@ pub(super) struct Lone {
     pub(super) centroid: DVec3,
     /// Unit vector area of `points` (zero when it vanishes).
     pub(super) axis: DVec3,
+    /// The loop's first curve, and its name for messages.
+    curve: (usize, String),
 }
 
 /// The lone loops of `g`: for every part without interior segments (its faces `lone_faces`,
@@ -61,7 +63,8 @@ pub(super) fn lone_loops(
         let (points, normals) = loop_samples(g, &a);
         let centroid = points.iter().sum::<DVec3>() / points.len() as f64;
         let axis = polygon_vector_area(&points).normalize_or_zero();
-        lones.push(Lone { faces: [a, b], points, normals, centroid, axis });
+        let c = g.segments[a[0].segment].curve;
+        lones.push(Lone { faces: [a, b], points, normals, centroid, axis, curve: (c, g.labels[c].clone()) });
     }
     Ok(lones)
 }
@@ -69,14 +72,19 @@ pub(super) fn lone_loops(
 /// The patches of the lone loops `lones`: first the tubes of the pairs that face each other
 /// ([`pair_tubes`]), then a disk for every other loop ([`lone_disk`]).
 ///
-/// Errors: a disk whose side cannot be told ([`lone_disk`]).
+/// Errors: a disk whose side cannot be told ([`lone_disk`]) — with the reason when the loop
+/// faces another whose normals point to the other side of their tube.
 pub(super) fn lone_patches(lones: &[Lone]) -> Result<Vec<Patch>> {
-    let (mut patches, used) = pair_tubes(lones);
+    let (mut patches, used, mismatched) = pair_tubes(lones);
     for (i, l) in lones.iter().enumerate() {
         if used[i] {
             continue;
         }
-        patches.push(lone_disk(l)?);
+        match (lone_disk(l), mismatched.iter().find(|m| m.0 == i || m.1 == i)) {
+            (Ok(disk), _) => patches.push(disk),
+            (Err(_), Some(&(a, b))) => return Err(opposite_rims(&lones[a], &lones[b])),
+            (Err(e), None) => return Err(e),
+        }
     }
     Ok(patches)
 }
@@ -86,8 +94,11 @@ pub(super) fn lone_patches(lones: &[Lone]) -> Result<Vec<Patch>> {
 /// 45° of the line joining their centroids and the conormals of both ([`conormal_score`])
 /// point along that line, towards or away from the other loop, by at least 0.3. Each loop is
 /// traversed in the direction whose conormal points to the other loop (the tube on its left).
-/// Returns the tubes and, per loop, whether it is in one.
-pub(super) fn pair_tubes(lones: &[Lone]) -> (Vec<Patch>, Vec<bool>) {
+/// Seen along the line, the two traversals of a tube wind opposite ways; a pair whose normals
+/// make them wind the same way (one rim's normals point to the other side of the tube: a
+/// twisted band, two cones through each other) is no tube. Returns the tubes, per loop whether
+/// it is in one, and the pairs left out for winding the same way.
+pub(super) fn pair_tubes(lones: &[Lone]) -> (Vec<Patch>, Vec<bool>, Vec<(usize, usize)>) {
     // Pair loops that face each other into tubes; nearest pairs first.
     let cos45 = std::f64::consts::FRAC_1_SQRT_2;
     let mut pairs = Vec::new();
@@ -102,15 +113,23 @@ pub(super) fn pair_tubes(lones: &[Lone]) -> (Vec<Patch>, Vec<bool>) {
             let si = conormal_score(&lones[i].points, &lones[i].normals, |_| dh);
             let sj = conormal_score(&lones[j].points, &lones[j].normals, |_| -dh);
             if si.abs() >= 0.3 && sj.abs() >= 0.3 {
-                pairs.push((dist, i, j, si, sj));
+                // The winding of each chosen traversal about the line (at least cos 45° in size).
+                let wi = si.signum() * lones[i].axis.dot(dh);
+                let wj = sj.signum() * lones[j].axis.dot(dh);
+                pairs.push((dist, i, j, si, sj, wi * wj < 0.0));
             }
         }
     }
     pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut patches = Vec::new();
     let mut used = vec![false; lones.len()];
-    for &(_, i, j, si, sj) in &pairs {
+    let mut mismatched = Vec::new();
+    for &(_, i, j, si, sj, opposite) in &pairs {
         if used[i] || used[j] {
+            continue;
+        }
+        if !opposite {
+            mismatched.push((i, j));
             continue;
         }
         used[i] = true;
@@ -120,7 +139,36 @@ pub(super) fn pair_tubes(lones: &[Lone]) -> (Vec<Patch>, Vec<bool>) {
         let lj = if sj > 0.0 { lones[j].faces[0].clone() } else { lones[j].faces[1].clone() };
         patches.push(Patch::Tube([li, lj]));
     }
-    (patches, used)
+    (patches, used, mismatched)
+}
+
+/// The error of two loops that face each other as a tube's rims with normals to opposite sides
+/// of it; it names the rim whose normals point towards the tube's axis (most tubes face out).
+fn opposite_rims(a: &Lone, b: &Lone) -> Error {
+    let line = (b.centroid - a.centroid).normalize_or_zero();
+    // Mean of n · r̂, r̂ the direction from the line through both centroids.
+    let outward = |l: &Lone| {
+        let sum: f64 = l
+            .points
+            .iter()
+            .zip(&l.normals)
+            .map(|(&p, &n)| {
+                let r = p - a.centroid;
+                n.dot((r - r.dot(line) * line).normalize_or_zero())
+            })
+            .sum();
+        sum / l.points.len().max(1) as f64
+    };
+    let (wrong, right) = if outward(a) <= outward(b) { (a, b) } else { (b, a) };
+    Error::input(format!(
+        "{w} and {r} face each other as the two rims of a tube, but their normals point to opposite sides of it \
+         (those of {w} towards the tube's axis, those of {r} away from it): no surface follows both, and neither \
+         loop bounds a disk on its own. Flip the normals of {w} (or those of {r}, for a tube that faces inward)",
+        w = wrong.curve.1,
+        r = right.curve.1
+    ))
+    .curve(wrong.curve.0)
+    .point(wrong.points[0])
 }
 
 /// The disk bounded by a lone loop: the traversal whose conormal points to the centroid

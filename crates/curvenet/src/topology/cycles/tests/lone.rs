@@ -37,6 +37,33 @@ fn two_facing_circles_bound_a_tube() {
     }
 }
 
+/// Issue 29: a tube whose top rim's normals point inward (the bottom's outward) winds both
+/// rims the same way; before, it surfaced silently into two cones through each other. Now it
+/// is an error naming the rim to flip. Both rims inward is a tube that faces inward.
+#[test]
+fn rims_with_normals_to_opposite_sides_are_an_error_naming_the_curve() {
+    let inward = |p: DVec3| -radial(p);
+    let (g, splines) = graph(vec![boundary(circle(1.0, 0.0, 48, radial)), boundary(circle(1.0, 1.0, 48, inward))]);
+    let e = find_patches(&g, &splines).unwrap_err();
+    assert!(e.to_string().contains("Flip the normals of curve 1"), "{e}");
+    assert_eq!(e.at().curve, Some(1));
+    // With normals tilted 60° out of the plane, one rim flipped: never a tube. Where both
+    // loops' normals lean to one side they are two caps (a disk each); else the error.
+    let tilt = |s: f64| move |p: DVec3| (radial(p).normalize() * 0.5 + DVec3::Z * s * 0.866).normalize();
+    for (a, b) in [(1.0, -1.0), (1.0, 1.0), (-1.0, -1.0), (-1.0, 1.0)] {
+        let flipped = move |p: DVec3| -tilt(b)(p);
+        let (g, splines) =
+            graph(vec![boundary(circle(1.0, 0.0, 48, tilt(a))), boundary(circle(1.0, 1.0, 48, flipped))]);
+        match find_patches(&g, &splines) {
+            Ok(patches) => assert!(patches.iter().all(|p| matches!(p, Patch::Disk(_))), "tilts {a} {b}: {patches:?}"),
+            Err(e) => assert!(e.to_string().contains("Flip the normals of curve 1"), "tilts {a} {b}: {e}"),
+        }
+    }
+    let (g, splines) = graph(vec![boundary(circle(1.0, 0.0, 48, inward)), boundary(circle(1.0, 1.0, 48, inward))]);
+    let patches = find_patches(&g, &splines).unwrap();
+    assert!(matches!(&patches[..], [Patch::Tube(_)]), "{patches:?}");
+}
+
 /// Side by side in one plane, two circles do not face each other: two disks. With normals
 /// leaning out and up (the rim of a dome), each disk lies inside its circle, counter-clockwise
 /// about +z.
@@ -73,6 +100,7 @@ fn a_loop_with_tangent_normals_has_no_side() {
         axis: DVec3::Z,
         points: c.points,
         normals: c.normals,
+        curve: (0, "curve 0".into()),
     };
     let Err(e) = lone_disk(&l) else { panic!("accepted") };
     assert!(e.to_string().starts_with("cannot tell on which side of the boundary loop through (1"), "{e}");
