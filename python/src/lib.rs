@@ -261,9 +261,15 @@ impl PyNetwork {
     }
 }
 
+/// Reads a network file; what the file holds that was not read (an unknown JSON key, with its
+/// line and the closest known one) is a `UserWarning`.
 #[pyfunction]
-fn read_network(path: &str) -> PyResult<PyNetwork> {
-    let inner = curvenet::io::read_network(Path::new(path)).map_err(err)?;
+fn read_network(py: Python<'_>, path: &str) -> PyResult<PyNetwork> {
+    let (inner, warnings) = curvenet::io::read_network_with_warnings(Path::new(path)).map_err(err)?;
+    for w in &warnings {
+        let text = std::ffi::CString::new(w.to_string().replace('\0', " ")).unwrap_or_default();
+        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &text, 1)?;
+    }
     Ok(PyNetwork { inner, source: Some(Path::new(path).to_path_buf()) })
 }
 

@@ -3,7 +3,7 @@
 
 use crate::options::{options, SolveArgs};
 use clap::Args;
-use curvenet::io::{read_network, write_network};
+use curvenet::io::write_network;
 use curvenet::Error;
 use std::io::Write;
 use std::path::PathBuf;
@@ -36,7 +36,7 @@ pub struct ConsolidateArgs {
 pub fn run(a: &ConsolidateArgs) -> Result<(), Error> {
     curvenet::io::NetworkFormat::from_path(&a.output)?;
     crate::surface::distinct_paths(&a.input, &[Some(&a.output)])?;
-    let network = read_network(&a.input)?;
+    let network = crate::read_network(&a.input)?;
     let mut given: Vec<(&'static str, String)> = Vec::new();
     if let Some(g) = &a.gap {
         given.push(("gap", g.clone()));

@@ -137,6 +137,15 @@ fn clean_up_on_signals() {
 #[cfg(not(unix))]
 fn clean_up_on_signals() {}
 
+/// Reads the network at `path`, printing the warnings of the read (unknown JSON keys).
+fn read_network(path: &std::path::Path) -> Result<curvenet::Network, curvenet::Error> {
+    let (network, warnings) = curvenet::io::read_network_with_warnings(path)?;
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(network)
+}
+
 fn main() -> ExitCode {
     clean_up_on_signals();
     let cli = Cli::parse();

@@ -3,7 +3,7 @@
 
 use crate::options::{options, SolveArgs};
 use clap::Args;
-use curvenet::io::{read_network, write_network};
+use curvenet::io::write_network;
 use curvenet::Error;
 use std::io::Write;
 use std::path::PathBuf;
@@ -31,7 +31,7 @@ pub struct NormalsArgs {
 pub fn run(a: &NormalsArgs) -> Result<(), Error> {
     curvenet::io::NetworkFormat::from_path(&a.output)?;
     crate::surface::distinct_paths(&a.input, &[Some(&a.output)])?;
-    let network = read_network(&a.input)?;
+    let network = crate::read_network(&a.input)?;
     let mut given: Vec<(&'static str, String)> = Vec::new();
     if a.all {
         given.push(("infer_normals", "all".into()));

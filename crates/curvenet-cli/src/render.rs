@@ -3,7 +3,7 @@
 use crate::options::{options, SolveArgs};
 use crate::Progress;
 use clap::Args;
-use curvenet::io::{read_mesh, read_network};
+use curvenet::io::read_mesh;
 use curvenet::render::{render, Coloring, RenderOptions, Scene, View};
 use curvenet::Error;
 use std::io::Write;
@@ -171,14 +171,14 @@ pub fn run(a: &RenderArgs) -> Result<(), Error> {
         let mesh = read_mesh(&a.input)?;
         let scene = Scene::from_mesh(mesh.as_data())?;
         match &a.curves {
-            Some(p) => scene.with_network_curves(&read_network(p)?),
+            Some(p) => scene.with_network_curves(&crate::read_network(p)?),
             None => scene,
         }
     } else {
         if a.curves.is_some() {
             return Err(Error::usage("--curves is for mesh inputs; a network input draws its own curves"));
         }
-        let network = read_network(&a.input)?;
+        let network = crate::read_network(&a.input)?;
         let progress = Progress::new(a.quiet);
         let surface =
             curvenet::surface_with_progress(&network, &options(&a.solve)?, &mut |s, t, d| progress.stage(s, t, d))?;

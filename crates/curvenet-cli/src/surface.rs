@@ -3,7 +3,7 @@
 use crate::options::{options, SolveArgs};
 use crate::Progress;
 use clap::Args;
-use curvenet::io::{read_network, stage_mesh, Staged};
+use curvenet::io::{stage_mesh, Staged};
 use curvenet::Error;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -45,7 +45,7 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
         None => None,
     };
     let clock = Instant::now();
-    let network = read_network(&a.input)?;
+    let network = crate::read_network(&a.input)?;
     let read = clock.elapsed().as_secs_f64();
     progress.stage("read", read, &format!("{} curves, {} samples", network.curves.len(), network.num_samples()));
     let mut opts = options(&a.solve)?;

@@ -14,7 +14,7 @@ mod obj;
 
 pub use mesh::{check_mesh_path, mesh_bytes, parse_mesh, read_mesh, stage_mesh, write_mesh, MeshData, MeshFile};
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Warning};
 use crate::network::Network;
 use std::io::Write;
 use std::path::Path;
@@ -212,10 +212,18 @@ fn check_parse_memory(source: &str, size: u64) -> Result<()> {
 
 /// Reads a curve network; the format comes from the extension. The network is returned as
 /// written in the file: call [`Network::validated`] (the pipeline does) to check its values.
+/// What the file holds that was not read (unknown JSON keys) is dropped here: front ends call
+/// [`read_network_with_warnings`] and show them.
 pub fn read_network(path: &Path) -> Result<Network> {
+    read_network_with_warnings(path).map(|(n, _)| n)
+}
+
+/// [`read_network`] with the warnings of the read: each unknown key of a JSON network, with its
+/// line and the closest known key ("`normal` — did you mean `normals`?").
+pub fn read_network_with_warnings(path: &Path) -> Result<(Network, Vec<Warning>)> {
     let format = NetworkFormat::from_path(path)?;
     let text = read_text(path, MAX_INPUT_BYTES)?;
-    parse_network(&text, format, &path.display().to_string())
+    parse_network_with_warnings(&text, format, &path.display().to_string())
 }
 
 /// Reads a text file as [`read_input`] does, at most `max` bytes; invalid UTF-8 is a parse error
@@ -236,11 +244,16 @@ pub fn text_of(bytes: Vec<u8>, path: &Path) -> Result<String> {
 /// Parses a curve network from text; `source` names it in error messages.
 /// A UTF-8 byte-order mark at the start (as some Windows editors write) is skipped.
 pub fn parse_network(text: &str, format: NetworkFormat, source: &str) -> Result<Network> {
+    parse_network_with_warnings(text, format, source).map(|(n, _)| n)
+}
+
+/// [`parse_network`] with the warnings of the parse ([`read_network_with_warnings`]).
+pub fn parse_network_with_warnings(text: &str, format: NetworkFormat, source: &str) -> Result<(Network, Vec<Warning>)> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     match format {
         NetworkFormat::Json => json::parse(text, source),
-        NetworkFormat::Obj => obj::parse(text, source),
-        NetworkFormat::Net => net::parse(text, source),
+        NetworkFormat::Obj => obj::parse(text, source).map(|n| (n, Vec::new())),
+        NetworkFormat::Net => net::parse(text, source).map(|n| (n, Vec::new())),
     }
 }
 

@@ -109,7 +109,8 @@ pub fn surface_file(input: &Path, output: &Path, options: &Options) -> FileRepor
         let bytes = crate::io::read_opened(file, input, crate::io::InputKind::Text, crate::io::MAX_INPUT_BYTES)?;
         *input_hash = Some(content_hash(&bytes));
         let text = crate::io::text_of(bytes, input)?;
-        let network = crate::io::parse_network(&text, format, &input.display().to_string())?;
+        let (network, read_warnings) =
+            crate::io::parse_network_with_warnings(&text, format, &input.display().to_string())?;
         drop(text);
         let mut opts = options.clone();
         if opts.method == crate::Method::Cauchy && opts.cauchy.attributes.is_none() {
@@ -131,7 +132,7 @@ pub fn surface_file(input: &Path, output: &Path, options: &Options) -> FileRepor
             error_kind: None,
             error: None,
             exit_code: None,
-            warnings: s.warnings.iter().map(|w| w.to_string()).collect(),
+            warnings: read_warnings.iter().chain(&s.warnings).map(|w| w.to_string()).collect(),
             seconds: clock.elapsed().as_secs_f64(),
             stats: Some(s.stats),
         })

@@ -16,7 +16,7 @@ fn round_trip() {
     };
     let mut buf = Vec::new();
     write(&mut buf, &net).unwrap();
-    let back = parse(std::str::from_utf8(&buf).unwrap(), "t").unwrap();
+    let back = parse(std::str::from_utf8(&buf).unwrap(), "t").unwrap().0;
     assert_eq!(back, net);
 }
 
@@ -40,7 +40,7 @@ fn normals_may_be_left_out_or_null_per_curve() {
         {"points": [[0,0,0],[1,0,0]]},
         {"points": [[0,0,0],[0,1,0]], "normals": null},
         {"points": [[0,0,0],[0,0,1]], "normals": [[1,0,0],[1,0,0]]}]}"#;
-    let net = parse(text, "t.json").unwrap();
+    let net = parse(text, "t.json").unwrap().0;
     let known: Vec<bool> = net.curves.iter().map(|c| c.has_normals()).collect();
     assert_eq!(known, vec![false, false, true]);
     // Written back without a "normals" key where they are unknown.
@@ -48,5 +48,29 @@ fn normals_may_be_left_out_or_null_per_curve() {
     write(&mut buf, &net).unwrap();
     let out = std::str::from_utf8(&buf).unwrap();
     assert_eq!(out.matches("\"normals\"").count(), 1, "{out}");
-    assert_eq!(parse(out, "t").unwrap(), net);
+    assert_eq!(parse(out, "t").unwrap().0, net);
+}
+
+#[test]
+fn misspelled_keys_find_the_known_one() {
+    assert_eq!(closest("normal", &CURVE_KEYS), Some("normals"));
+    assert_eq!(closest("boundry", &CURVE_KEYS), Some("boundary"));
+    assert_eq!(closest("pionts", &CURVE_KEYS), Some("points"));
+    assert_eq!(closest("Closed", &CURVE_KEYS), Some("closed"));
+    assert_eq!(closest("colour", &CURVE_KEYS), None);
+    assert_eq!(closest("snapping", &NETWORK_KEYS), Some("snap"));
+}
+
+#[test]
+fn unknown_keys_are_warnings_with_their_line_and_a_missing_field_names_what_was_found() {
+    let text = "{\"curves\": [\n {\"points\": [[0,0,0],[1,0,0]],\n  \"normal\": [[0,0,1],[0,0,1]]},\n {\"points\": [[0,0,0],[1,0,0]], \"boundry\": true}\n]}";
+    let (net, warnings) = parse(text, "n.json").unwrap();
+    assert_eq!(net.curves.len(), 2);
+    assert!(net.curves[0].normals.is_empty(), "the misspelled normals are not read");
+    let said: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(said.len(), 2, "{said:?}");
+    assert!(said[0].starts_with("n.json:3: unknown key \"normal\" in curve 0") && said[0].contains("\"normals\"?"));
+    assert!(said[1].starts_with("n.json:4: unknown key \"boundry\" in curve 1") && said[1].contains("\"boundary\"?"));
+    let e = parse("{\"curves\": [{\"pionts\": [[0,0,0]]}]}", "p.json").unwrap_err().to_string();
+    assert!(e.contains("missing field `points` (found \"pionts\": did you mean \"points\"?)"), "{e}");
 }
