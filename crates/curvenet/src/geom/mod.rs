@@ -2,6 +2,7 @@
 //! orthonormal frames and segment–segment closest points.
 
 pub mod distance;
+pub mod intersect;
 pub mod mesh;
 pub mod polyline;
 

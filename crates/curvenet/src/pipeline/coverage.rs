@@ -4,7 +4,9 @@
 //!   of the sketch is refused (docs/design.md §14);
 //! - **reach**, how far each patch strays from its own boundary curves: a patch whose solve ran
 //!   away (a spike or balloon far outside the curves, from a degenerate cycle or a folded
-//!   domain) is refused instead of written (docs/design.md §14).
+//!   domain) is refused instead of written (docs/design.md §14);
+//! - **self-intersections**: a surface that passes through itself (two cones through each
+//!   other, a patch through its neighbour) is named in a warning, never a quiet success.
 
 use crate::error::{Error, Result, Warning};
 use crate::geom::distance::MeshDistance;
@@ -114,6 +116,26 @@ fn reach_of(positions: &[DVec3], faces: &[[u32; 3]], face_patch: &[u32], num_cur
         }
     }
     reach
+}
+
+/// Counts the crossing triangle pairs of `mesh` into `stats.self_intersections`; a warning
+/// naming the first place and its patches when there are any.
+pub fn check_self_intersections(mesh: &Mesh, stats: &mut super::Stats) -> Option<Warning> {
+    let found = crate::geom::intersect::self_intersections(&mesh.positions, &mesh.faces);
+    stats.self_intersections = found.pairs;
+    let (f, g, p) = found.first?;
+    let (pf, pg) = (mesh.face_patch[f as usize] as usize, mesh.face_patch[g as usize] as usize);
+    let which = if pf == pg { format!("patch {pf} through itself") } else { format!("patches {pf} and {pg}") };
+    Some(
+        Warning::new(format!(
+            "the surface passes through itself: {} pair(s) of triangles cross, the first near {} ({which}); a fold \
+             or two sheets through each other, from normals that point to opposite sides or curves closer than the \
+             mesh spacing",
+            found.pairs,
+            crate::geom::fmt_point(p)
+        ))
+        .patch(pf),
+    )
 }
 
 /// Refuses a surface with a patch that ran away ([`MAX_REACH`]); returns the largest reach.

@@ -189,6 +189,12 @@ pub(crate) fn solve_prepared(
     progress("solve", st.operators + st.factor + st.solve, options.method.name());
     let mut surface = finish(prepared, options, result, (iteration_report, coarse), warnings, timings, base, start);
     surface.stats.reach = super::coverage::check_reach(&surface.mesh)?;
+    let clock = Instant::now();
+    if let Some(w) = super::coverage::check_self_intersections(&surface.mesh, &mut surface.stats) {
+        surface.warnings.push(w);
+    }
+    surface.stats.timings.operators += seconds_since(clock);
+    surface.stats.timings.total += seconds_since(clock);
     Ok(surface)
 }
 
@@ -264,6 +270,7 @@ fn finish(
         consolidation: None,
         coverage: None,
         reach: 0.0,
+        self_intersections: 0,
         peak_memory_bytes: None,
         timings,
     };

@@ -91,6 +91,9 @@ pub struct Stats {
     /// box's diagonal (`pipeline::coverage::patch_reach`); a surface beyond
     /// `coverage::MAX_REACH` is refused.
     pub reach: f64,
+    /// Pairs of triangles that share no vertex and cross (`geom::intersect`): a surface that
+    /// passes through itself, named in a warning.
+    pub self_intersections: usize,
     /// What consolidation did (`None` with `consolidate = off`).
     pub consolidation: Option<crate::topology::consolidate::Consolidation>,
     /// Seconds per stage.
