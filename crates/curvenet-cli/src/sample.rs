@@ -173,6 +173,18 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
             curvenet::sampling::MIN_CREASE_SPACINGS
         );
     }
+    if !r.left_out.is_empty() {
+        dropped += &format!(
+            "; left out {} curve(s) that `surface` refused (each named in a warning), so that it takes the rest",
+            r.left_out.len()
+        );
+    }
+    for why in &r.left_out {
+        eprintln!("warning: left out {why}");
+    }
+    if let Some(e) = &r.unsurfaced {
+        eprintln!("warning: `curvenet surface` will refuse this network with default options: {e}");
+    }
     if r.pinches > 0 {
         dropped += &format!("; split {} pinch vertex(es) where the mesh boundary touches itself", r.pinches);
     }

@@ -124,7 +124,17 @@ pub(super) fn kept_creases(positions: &[DVec3], mut sharp: Sharp, min_len: f64, 
     loop {
         let all = chains(&sharp, pos);
         let lengths: Vec<f64> = all.iter().map(length).collect();
-        let mut drop: Vec<usize> = (0..all.len()).filter(|&i| lengths[i] < min_len).collect();
+        // A single sharp edge whose ends meet no other sharp edge has no vertex the cut opens
+        // (a fan splits only where two sharp edges part it): it would be a crease curve on a
+        // mesh that is smooth across it, which sections cross without meeting (issue 29: a
+        // sampled human figure's "crease #77 runs within the snapping tolerance of curve 6").
+        let mut degree: HashMap<u32, usize> = HashMap::new();
+        for &(a, b) in &sharp {
+            *degree.entry(a).or_default() += 1;
+            *degree.entry(b).or_default() += 1;
+        }
+        let unopened = |(c, closed): &Chain| !*closed && c.len() < 3 && c.iter().all(|v| degree.get(v) == Some(&1));
+        let mut drop: Vec<usize> = (0..all.len()).filter(|&i| lengths[i] < min_len || unopened(&all[i])).collect();
         if drop.is_empty() {
             drop = near_misses(&all, &lengths, positions, near, gap);
         }

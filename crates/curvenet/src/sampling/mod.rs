@@ -54,6 +54,7 @@ pub mod principal;
 mod sections;
 mod streamlines;
 pub mod strokes;
+mod verify;
 
 pub use creases::{CREASE_CORNER_DEG, MIN_CREASE_SPACINGS};
 pub use cut::SHARP_TURN_DEG;
@@ -204,6 +205,11 @@ pub struct SampleReport {
     /// Chains of sharp edges left smooth: shorter than [`MIN_CREASE_SPACINGS`] sample
     /// spacings, or running within the snapping distance of a longer one.
     pub smoothed_creases: usize,
+    /// Curves left out because `surface`'s checks refused them (`verify`): each curve's name
+    /// and the error.
+    pub left_out: Vec<String>,
+    /// The error `surface`'s checks still give after those rounds, if any.
+    pub unsurfaced: Option<String>,
 }
 
 /// A sample of a polyline before resampling: position, normal, and whether it is a crossing
@@ -386,6 +392,7 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     let pieces = cut::cut_bad_spots(traced, &traces.spots, &scales, &mut report);
     let (pieces, loops) = holes::cover_holes(pieces, boundary_loops, opts, &scales, &mut report);
     let net = network::assemble(pieces, loops, opts, &scales, &mut report)?;
+    let net = verify::surfaceable(net, &mut report);
     Ok((net, report))
 }
 
