@@ -565,3 +565,14 @@ def test_consolidate_joins_raw_strokes_and_surface_takes_them():
     same, report, _ = curvenet.consolidate(sphere)
     assert report["joined"] + report["merged"] + report["trimmed"] == 0
     assert [c[0].tolist() for c in same.curves] == [c[0].tolist() for c in sphere.curves]
+
+
+def test_a_misspelled_field_is_named_in_a_warning(tmp_path):
+    """Issue 29: "normal" for "normals" was dropped without a word (the normals then inferred)."""
+    path = tmp_path / "net.json"
+    subprocess.run([str(CLI), "example", "sphere", "-o", str(path)], check=True, capture_output=True)
+    path.write_text(path.read_text().replace('"normals"', '"normal"', 1))
+    with pytest.warns(UserWarning, match='unknown key "normal" in curve 0, ignored — did you mean "normals"'):
+        curvenet.read_network(str(path))
+    reports = curvenet.surface_files([str(path)], tmp_path / "out", jobs=1, preset="fast", vertices=2000)
+    assert any('did you mean "normals"' in w for w in reports[0]["warnings"]), reports[0]["warnings"]
