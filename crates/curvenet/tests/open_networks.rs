@@ -60,3 +60,18 @@ fn a_hole_reached_by_a_single_curve_is_covered_with_a_warning() {
         .sum();
     assert!((area - 9.0).abs() < 0.05, "area {area}");
 }
+
+/// Issue 29: the cylinder's two rims without their boundary flag (`"boundry": true`, a typo)
+/// bound a patch on each side; the error says to mark them as borders, not to change the
+/// spacing.
+#[test]
+fn loops_that_meet_nothing_without_the_boundary_flag_get_the_right_hint() {
+    let mut net = curvenet::network::examples::example("cylinder").unwrap();
+    for c in &mut net.curves {
+        c.boundary = false;
+    }
+    let Err(e) = surface(&net, &Options::default().with_vertices(3000)) else { panic!("surfaced") };
+    let text = e.to_string();
+    assert!(text.contains("mark it as one (`\"boundary\": true`)"), "{text}");
+    assert!(!text.contains("smaller `spacing`"), "{text}");
+}

@@ -131,7 +131,7 @@ pub fn self_intersections(positions: &[DVec3], faces: &[[u32; 3]]) -> SelfInters
         })
         .collect();
     let mut found = found;
-    found.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)));
+    found.sort_by_key(|a| (a.0, a.1));
     found.dedup_by(|a, b| (a.0, a.1) == (b.0, b.1));
     SelfIntersections { pairs: found.len(), first: found.first().copied() }
 }

@@ -271,6 +271,27 @@ pub(super) fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
     };
     let mut curves: Vec<String> = [a, b].iter().filter_map(|&v| curve_of(v)).collect();
     curves.dedup();
+    // A closed curve that meets no other (one segment, from its node back to it) bounds a
+    // patch on each side: a border not marked as one ("boundry", issue 29).
+    let lone_loops: Vec<&str> = (0..g.curves.len())
+        .filter(|&c| {
+            let segs: Vec<_> = g.segments.iter().filter(|s| s.curve == c).collect();
+            let c = &g.curves[c];
+            c.closed && !c.boundary && segs.len() == 1 && segs[0].start == segs[0].end
+        })
+        .map(|c| g.labels[c].as_str())
+        .filter(|l| curves.iter().any(|n| n == l))
+        .collect();
+    let hint = if lone_loops.is_empty() {
+        "give a smaller `spacing`, a larger `snap`, or fix the curves there".to_string()
+    } else {
+        format!(
+            "{} {} a closed loop that meets no other curve, with a patch on either side: if it is an open border of \
+             the surface, mark it as one (`\"boundary\": true`)",
+            lone_loops.join(" and "),
+            if lone_loops.len() == 1 { "is" } else { "are each" }
+        )
+    };
     let list = |v: &[String]| if v.is_empty() { "interior vertices".to_string() } else { v.join(" and ") };
     let patches: Vec<String> = patches.iter().map(|p| p.to_string()).collect();
     // The segment the bad edge lies on (both ends on it), else one through either end.
@@ -281,8 +302,7 @@ pub(super) fn manifold(mesh: &Mesh, g: &Graph, res: &Resampled) -> Result<()> {
         .or_else(|| [a, b].iter().find_map(|&v| res.segment_vertices.iter().position(|sv| sv.contains(&v))));
     let e = Error::topology(format!(
         "patches {} overlap near {} (an edge of {} in {} triangles): the curves come closer than the \
-         mesh spacing between crossings, or a patch folds onto its neighbour; give a smaller `spacing`, \
-         a larger `snap`, or fix the curves there",
+         mesh spacing between crossings, or a patch folds onto its neighbour; {hint}",
         patches.join(", "),
         crate::geom::fmt_point(mesh.positions[a as usize]),
         list(&curves),

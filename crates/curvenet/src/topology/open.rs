@@ -168,9 +168,28 @@ fn trim_dangling_only(g: &mut Graph) -> Result<Vec<Warning>> {
             .take(10)
             .collect();
         let first = stop_at.iter().position(Option::is_some);
+        // Closed curves that meet nothing: borders not marked as such ("boundry", issue 29).
+        let loops: Vec<&str> = (0..g.curves.len())
+            .filter(|&c| {
+                let segs: Vec<_> = g.segments.iter().filter(|s| s.curve == c).collect();
+                g.curves[c].closed && !g.curves[c].boundary && segs.len() == 1 && segs[0].start == segs[0].end
+            })
+            .map(|c| g.labels[c].as_str())
+            .take(10)
+            .collect();
+        let hint = if loops.is_empty() {
+            String::new()
+        } else {
+            format!(
+                ". {} {} a closed loop that meets no other curve: if it is an open border of the surface (the rims of \
+                 a tube), mark it as one (`\"boundary\": true`)",
+                loops.join(", "),
+                if loops.len() == 1 { "is" } else { "are each" }
+            )
+        };
         let e = Error::topology(format!(
             "no curves of the network bound a patch: every curve dangles or meets no other ({}{}). Curves must \
-             cross each other (or end on each other) to enclose patches",
+             cross each other (or end on each other) to enclose patches{hint}",
             named.join(", "),
             if stop_at.iter().filter(|s| s.is_some()).count() > named.len() { ", …" } else { "" }
         ));
