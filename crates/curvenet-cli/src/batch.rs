@@ -6,11 +6,12 @@
 //! budget of its share of the memory available. The report (`DIR/report.jsonl`) gets a line as
 //! each network ends, so an interrupted batch leaves a report `--resume` can continue from.
 //!
-//! Nothing is lost (docs/design.md §10): no output may be an input (checked before any work,
-//! symlinks resolved); one batch writes into a folder at a time (`io::folder::FolderLock`);
-//! inputs are read only if they are regular files (a FIFO does not hang the batch); the
-//! temporary files of killed runs are removed by the next; `--resume` keeps a mesh only when it
-//! is whole and was made from the same input with the same options (`pipeline::files::resume`).
+//! Nothing is lost (docs/design.md §4, "Batches"): no output may be an input (checked before
+//! any work, symlinks resolved); one batch writes into a folder at a time
+//! (`io::folder::FolderLock`); inputs are read only if they are regular files (a FIFO does not
+//! hang the batch); the temporary files of killed runs are removed by the next; `--resume` keeps
+//! a mesh only when it is whole and was made from the same input with the same options
+//! (`pipeline::files::resume`).
 
 use crate::options::{options, SolveArgs};
 use clap::Args;

@@ -1,7 +1,7 @@
 //! An output folder that several runs may point at: one batch writes into it at a time (an
 //! advisory lock the operating system releases when the process ends, however it ends), the
 //! temporary files of runs that died are removed by the next, and no output may be an input
-//! (docs/design.md §10, "Batches").
+//! (docs/design.md §4, "Batches").
 
 use crate::error::{Error, Result};
 use std::collections::HashMap;
