@@ -211,8 +211,10 @@ fn the_default_round_trip_on_a_figure_with_many_creases() {
     let d = curvenet::metrics::MeshDistance::new(&m.positions, &m.faces);
     let diag = curvenet::geom::Aabb::of(m.positions.iter().copied()).diagonal();
     let far = s.mesh.positions.iter().filter(|&&p| d.closest(p).0 > 0.02 * diag).count();
-    // Measured: 568 of 25,859 (2.2 %), where the curves left out widen the patches (armpits,
-    // hands). The figure, not a blob: at most 5 %.
+    // Measured: 568 of 25,859 (2.2 %), where the curves left out widen the patches. At most
+    // 5 %. This measures the surface against the mesh, not the other way: the render shows
+    // the arms left out (their curves refused) and a fin at one foot — the round trip runs,
+    // its surface is not yet the figure (issue 29, left open for it).
     eprintln!("figure: {far} of {} vertices farther than 2 % of the diagonal", s.mesh.positions.len());
     assert!(
         far * 20 <= s.mesh.positions.len(),
