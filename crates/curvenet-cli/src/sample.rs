@@ -17,8 +17,9 @@ pub struct SampleArgs {
     output: PathBuf,
     /// Section planes per axis, X,Y,Z (a single number for all three); with --curves principal
     /// their mean sets the distance between the curves.
-    #[arg(long, value_name = "X,Y,Z", default_value = "8,8,8")]
-    planes: String,
+    /// [default: 8,8,8, more when the network's surface would leave parts of the mesh out]
+    #[arg(long, value_name = "X,Y,Z")]
+    planes: Option<String>,
     /// Distance between samples along the curves (default: 1/200 of the bounding-box diagonal).
     #[arg(long, value_name = "D")]
     spacing: Option<f64>,
@@ -51,9 +52,10 @@ pub struct SampleArgs {
     curves: String,
     /// The mesh's creases: edges whose two faces' normals are more than DEG degrees apart are
     /// sharp; their chains become crease curves (two normals per sample, `normals_right`;
-    /// .json only) and the other curves end on them.
-    #[arg(long, value_name = "DEG", default_value_t = SampleOptions::DEFAULT_CREASE_DEG)]
-    crease_angle: f64,
+    /// .json only) and the other curves end on them [default: 30, the creases left smooth when
+    /// the network without them covers the mesh better]
+    #[arg(long, value_name = "DEG")]
+    crease_angle: Option<f64>,
     /// Find no creases: every curve smooth across (one normal per sample; a mesh with sharp
     /// edges then comes back rounded).
     #[arg(long, conflicts_with = "crease_angle")]
@@ -79,7 +81,7 @@ fn parse_planes(s: &str) -> Result<[usize; 3], Error> {
 pub fn run(a: &SampleArgs) -> Result<(), Error> {
     let format = curvenet::io::NetworkFormat::from_path(&a.output)?;
     let opts = SampleOptions {
-        planes: parse_planes(&a.planes)?,
+        planes: a.planes.as_deref().map(parse_planes).transpose()?.unwrap_or(SampleOptions::DEFAULT_PLANES),
         spacing: a.spacing,
         noise: a.noise,
         seed: a.seed,
@@ -87,13 +89,12 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
         boundary: !a.no_boundary,
         tilt: a.tilt,
         curves: if a.curves == "principal" { CurveFamily::Principal } else { CurveFamily::Planes },
-        crease_angle: (!a.no_creases).then_some(a.crease_angle),
+        crease_angle: (!a.no_creases).then_some(a.crease_angle.unwrap_or(SampleOptions::DEFAULT_CREASE_DEG)),
+        // The counts and the creases asked for are kept as asked.
+        adapt: a.planes.is_none() && a.crease_angle.is_none(),
     };
-    if !(a.crease_angle.is_finite() && a.crease_angle > 0.0 && a.crease_angle < 180.0) {
-        return Err(Error::usage(format!(
-            "--crease-angle {}: give an angle in degrees between 0 and 180",
-            a.crease_angle
-        )));
+    if let Some(deg) = a.crease_angle.filter(|d| !(d.is_finite() && *d > 0.0 && *d < 180.0)) {
+        return Err(Error::usage(format!("--crease-angle {deg}: give an angle in degrees between 0 and 180")));
     }
     let mesh = read_mesh(&a.mesh)?;
     let (net, r) = sample_mesh(&mesh.positions, &mesh.faces, &opts)?;
@@ -116,7 +117,7 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
              normals; write .json, or give --no-creases for a network of smooth curves",
             a.output.display(),
             r.creases,
-            a.crease_angle
+            a.crease_angle.unwrap_or(SampleOptions::DEFAULT_CREASE_DEG)
         )));
     }
     write_network(&a.output, &net)?;
@@ -178,6 +179,35 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
             "; left out {} curve(s) that `surface` refused (each named in a warning), so that it takes the rest",
             r.left_out.len()
         );
+    }
+    if !r.smoothed_refused.is_empty() {
+        dropped += &format!(
+            "; sampled again with {} crease(s) that `surface` refused left smooth (each named in a warning)",
+            r.smoothed_refused.len()
+        );
+    }
+    if let Some(p) = r.planes {
+        eprintln!(
+            "note: sampled with {},{},{} planes: fewer left parts of the mesh out of the network's surface (give --planes to choose)",
+            p[0], p[1], p[2]
+        );
+    }
+    if let Some((creases, with, without)) = r.creases_dropped {
+        eprintln!(
+            "warning: the mesh's {creases} crease(s) are left smooth: with them the network's quick surface passed near {:.0} % of the mesh, without them {:.0} % (give --crease-angle to keep them, --no-creases to say so)",
+            100.0 * with,
+            100.0 * without
+        );
+    }
+    if let Some(c) = r.mesh_coverage.filter(|&c| c < curvenet::sampling::GOOD_COVERAGE) {
+        eprintln!(
+            "warning: the network's quick surface passes near only {:.0} % of the mesh's area (within {} of its bounding-box diagonal): `surface` will leave parts of the mesh out",
+            100.0 * c,
+            curvenet::sampling::verify::COVERAGE_DISTANCE
+        );
+    }
+    for why in &r.smoothed_refused {
+        eprintln!("warning: left smooth (the mesh sampled again without it) {why}");
     }
     for why in &r.left_out {
         eprintln!("warning: left out {why}");

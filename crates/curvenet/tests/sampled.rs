@@ -193,12 +193,14 @@ fn principal_curves_on_a_torus_are_meridians_and_parallels() {
     );
 }
 
-/// Issue 29: `curvenet sample` then `surface`, both with default options, on a figure of
-/// 4,702 vertices with many sharp edges (`tests/data/meshes/figure.off`: a human-like union of
-/// ellipsoids, capsules and boxes, meshed by marching tetrahedra — creases everywhere, some of
-/// one mesh edge). Before, sampling wrote a network that `surface` refused; now the curves the
-/// pipeline's checks refuse are left out (`SampleReport::left_out`), and the rest surfaces close
-/// to the mesh.
+/// The default round trip `sample` → `surface` on a human-like figure (`figure.off`: a union of
+/// ellipsoids, capsules and boxes, meshed by marching tetrahedra — creases everywhere, many of
+/// them tangles of one or two mesh edges). Before, sampling wrote a network that `surface`
+/// refused, then one whose surface had no arms (the creases `surface` refused left out, the
+/// sections that ended on them dangling). Now the mesh is the truth (`SampleOptions::adapt`):
+/// the network without the tangled creases, with more planes through the thin limbs, is kept
+/// because its surface covers the mesh. Measured both ways: the surface against the mesh and
+/// the mesh against the surface (missing arms show only in the second).
 #[test]
 fn the_default_round_trip_on_a_figure_with_many_creases() {
     use curvenet::sampling::{sample_mesh, SampleOptions};
@@ -206,19 +208,33 @@ fn the_default_round_trip_on_a_figure_with_many_creases() {
     let m = curvenet::io::read_mesh(&path).unwrap();
     let (net, report) = sample_mesh(&m.positions, &m.faces, &SampleOptions::default()).unwrap();
     assert!(report.unsurfaced.is_none(), "{:?}", report.unsurfaced);
-    eprintln!("figure: {} curves left out for surface's checks", report.left_out.len());
+    eprintln!(
+        "figure: {} curves left out for surface's checks, creases dropped {:?}, planes {:?}, quick coverage {:?}",
+        report.left_out.len(),
+        report.creases_dropped,
+        report.planes,
+        report.mesh_coverage
+    );
     let s = curvenet::surface(&net, &curvenet::Options::default()).unwrap_or_else(|e| panic!("{e}"));
-    let d = curvenet::metrics::MeshDistance::new(&m.positions, &m.faces);
     let diag = curvenet::geom::Aabb::of(m.positions.iter().copied()).diagonal();
-    let far = s.mesh.positions.iter().filter(|&&p| d.closest(p).0 > 0.02 * diag).count();
-    // Measured: 568 of 25,859 (2.2 %), where the curves left out widen the patches. At most
-    // 5 %. This measures the surface against the mesh, not the other way: the render shows
-    // the arms left out (their curves refused) and a fin at one foot — the round trip runs,
-    // its surface is not yet the figure (issue 29, left open for it).
-    eprintln!("figure: {far} of {} vertices farther than 2 % of the diagonal", s.mesh.positions.len());
+    // The surface against the mesh. Measured: 20 of 16,173 vertices (0.1 %) farther than 2 %
+    // of the diagonal (2.2 % before, with the arms missing). At most 2 %.
+    let to_mesh = curvenet::metrics::MeshDistance::new(&m.positions, &m.faces);
+    let far = s.mesh.positions.iter().filter(|&&p| to_mesh.closest(p).0 > 0.02 * diag).count();
+    eprintln!(
+        "figure: {far} of {} surface vertices farther than 2 % of the diagonal from the mesh",
+        s.mesh.positions.len()
+    );
     assert!(
-        far * 20 <= s.mesh.positions.len(),
+        far * 50 <= s.mesh.positions.len(),
         "{far} of {} vertices farther than 2 % of the diagonal",
         s.mesh.positions.len()
     );
+    // The mesh against the surface: the share of the mesh's vertices the surface passes within
+    // 2 % of the diagonal. Measured: 98.4 % (no arms before). At least 97 %.
+    let to_surface = curvenet::metrics::MeshDistance::new(&s.mesh.positions, &s.mesh.faces);
+    let near = m.positions.iter().filter(|&&p| to_surface.closest(p).0 <= 0.02 * diag).count();
+    let share = near as f64 / m.positions.len() as f64;
+    eprintln!("figure: the surface passes near {:.1} % of the mesh's vertices", 100.0 * share);
+    assert!(share >= 0.97, "the surface passes near only {:.1} % of the mesh's vertices", 100.0 * share);
 }

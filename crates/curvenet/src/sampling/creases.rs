@@ -20,7 +20,7 @@ pub const MIN_CREASE_SPACINGS: f64 = 3.0;
 
 /// What [`super::mesh::Mesh::repaired`] needs to find the creases and cut the mesh along them.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct CreaseCut {
+pub(super) struct CreaseCut<'a> {
     /// The dihedral angle (radians) above which an edge is sharp ([`sharp_edges`]).
     pub(super) angle: f64,
     /// Chains shorter than this stay smooth ([`kept_creases`]).
@@ -28,6 +28,12 @@ pub(super) struct CreaseCut {
     /// Near misses between chains closer than this to a common vertex are allowed
     /// ([`kept_creases`]).
     pub(super) gap: f64,
+    /// The samples of crease curves `surface`'s checks refused in an earlier round
+    /// ([`super::sample_mesh`]): a chain that runs along them stays smooth this time.
+    pub(super) refused: &'a [DVec3],
+    /// How close a chain's vertex must come to those samples to count as on them: one sample
+    /// spacing (the crease curves were resampled along the chains).
+    pub(super) refused_within: f64,
 }
 
 /// Sharp edges ([`edge_key`]) by their vertices.
@@ -112,8 +118,10 @@ pub(super) fn chains(sharp: &Sharp, pos: impl Fn(u32) -> DVec3) -> Vec<Chain> {
 /// go, then of two chains that come within `near` of each other more than `gap` away from
 /// their common vertices (a near miss the network would read as overlapping curves), the
 /// shorter one.
-pub(super) fn kept_creases(positions: &[DVec3], mut sharp: Sharp, min_len: f64, near: f64, gap: f64) -> (Sharp, usize) {
+pub(super) fn kept_creases(positions: &[DVec3], mut sharp: Sharp, cut: &CreaseCut, near: f64) -> (Sharp, usize) {
+    let (min_len, gap) = (cut.min_len, cut.gap);
     let pos = |v: u32| positions[v as usize];
+    let refused = Refused::new(cut.refused, cut.refused_within);
     let length = |(c, closed): &Chain| {
         let m = c.len();
         let edges = if *closed { m } else { m - 1 };
@@ -134,7 +142,9 @@ pub(super) fn kept_creases(positions: &[DVec3], mut sharp: Sharp, min_len: f64, 
             *degree.entry(b).or_default() += 1;
         }
         let unopened = |(c, closed): &Chain| !*closed && c.len() < 3 && c.iter().all(|v| degree.get(v) == Some(&1));
-        let mut drop: Vec<usize> = (0..all.len()).filter(|&i| lengths[i] < min_len || unopened(&all[i])).collect();
+        let mut drop: Vec<usize> = (0..all.len())
+            .filter(|&i| lengths[i] < min_len || unopened(&all[i]) || refused.covers(&all[i].0, positions))
+            .collect();
         if drop.is_empty() {
             drop = near_misses(&all, &lengths, positions, near, gap);
         }
@@ -149,6 +159,48 @@ pub(super) fn kept_creases(positions: &[DVec3], mut sharp: Sharp, min_len: f64, 
             }
             dropped += 1;
         }
+    }
+}
+
+/// The samples of refused crease curves ([`CreaseCut::refused`]) in a grid of cell `within`.
+struct Refused {
+    /// Per cell: the samples in it.
+    grid: HashMap<[i64; 3], Vec<DVec3>>,
+    /// The distance within which a vertex is on them.
+    within: f64,
+}
+
+impl Refused {
+    fn new(points: &[DVec3], within: f64) -> Refused {
+        let within = within.max(f64::MIN_POSITIVE);
+        let mut grid: HashMap<[i64; 3], Vec<DVec3>> = HashMap::new();
+        for &p in points {
+            grid.entry(Self::key(p, within)).or_default().push(p);
+        }
+        Refused { grid, within }
+    }
+
+    fn key(p: DVec3, cell: f64) -> [i64; 3] {
+        [(p.x / cell).floor() as i64, (p.y / cell).floor() as i64, (p.z / cell).floor() as i64]
+    }
+
+    /// Whether `p` lies within the distance of a refused sample.
+    fn near(&self, p: DVec3) -> bool {
+        let [x, y, z] = Self::key(p, self.within);
+        (-1..=1).any(|dx| {
+            (-1..=1).any(|dy| {
+                (-1..=1).any(|dz| {
+                    self.grid
+                        .get(&[x + dx, y + dy, z + dz])
+                        .is_some_and(|l| l.iter().any(|q| q.distance(p) <= self.within))
+                })
+            })
+        })
+    }
+
+    /// Whether at least half the vertices of `chain` lie on refused samples.
+    fn covers(&self, chain: &[u32], positions: &[DVec3]) -> bool {
+        !self.grid.is_empty() && 2 * chain.iter().filter(|&&v| self.near(positions[v as usize])).count() >= chain.len()
     }
 }
 

@@ -159,39 +159,47 @@ pub(super) fn near_misses(
     first_virtual: usize,
 ) -> Vec<(usize, DVec3)> {
     use crate::geom::closest_params_segment_segment;
-    let h = near.max(f64::MIN_POSITIVE);
-    let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
+    // Cells as long as the cuts (padded by `near`): each cut in a few cells, and few cuts per
+    // cell (cells of side `near` put a mesh edge in dozens, and the pairs were found again in
+    // each: half of `curvenet sample`'s time on a 4.7k-vertex figure).
+    let mean_cut = cuts.iter().map(|c| c.ends[0].distance(c.ends[1])).sum::<f64>() / cuts.len().max(1) as f64;
+    let h = near.max(mean_cut).max(f64::MIN_POSITIVE);
+    let mut grid: HashMap<(i64, i64, i64), Vec<u32>> = HashMap::new();
     let mut along = Vec::new();
     for (i, c) in cuts.iter().enumerate() {
         // Each cut in the cells along it (a cut far longer than the tolerance on a coarse mesh
         // fills a line of cells, not its box).
         crate::geom::segment_cells(c.ends[0], c.ends[1], near, h, &mut along);
         for &cell in &along {
-            grid.entry(cell).or_default().push(i);
+            grid.entry(cell).or_default().push(i as u32);
         }
     }
-    let mut seen = std::collections::HashSet::new();
-    let mut out = Vec::new();
+    // The candidate pairs once each, in a fixed order.
+    let mut pairs: Vec<(u32, u32)> = Vec::new();
     for list in grid.values() {
         for (k, &i) in list.iter().enumerate() {
             for &j in &list[k + 1..] {
-                let (a, b) = (&cuts[i], &cuts[j]);
-                if a.plane == b.plane || !seen.insert((i.min(j), i.max(j))) {
-                    continue;
-                }
-                let (s, t) = closest_params_segment_segment(a.ends[0], a.ends[1], b.ends[0], b.ends[1]);
-                let (pa, pb) = (a.ends[0].lerp(a.ends[1], s), b.ends[0].lerp(b.ends[1], t));
-                if pa.distance(pb) > near {
-                    continue;
-                }
-                let key = (a.plane.min(b.plane), a.plane.max(b.plane));
-                let m = 0.5 * (pa + pb);
-                let at_crossing =
-                    crossing_points.get(&key).is_some_and(|ps| ps.iter().any(|p| p.distance(m) <= 4.0 * near));
-                if !at_crossing {
-                    out.push((if key.1 >= first_virtual { key.0 } else { key.1 }, m));
+                if cuts[i as usize].plane != cuts[j as usize].plane {
+                    pairs.push((i.min(j), i.max(j)));
                 }
             }
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    let mut out = Vec::new();
+    for (i, j) in pairs {
+        let (a, b) = (&cuts[i as usize], &cuts[j as usize]);
+        let (s, t) = closest_params_segment_segment(a.ends[0], a.ends[1], b.ends[0], b.ends[1]);
+        let (pa, pb) = (a.ends[0].lerp(a.ends[1], s), b.ends[0].lerp(b.ends[1], t));
+        if pa.distance(pb) > near {
+            continue;
+        }
+        let key = (a.plane.min(b.plane), a.plane.max(b.plane));
+        let m = 0.5 * (pa + pb);
+        let at_crossing = crossing_points.get(&key).is_some_and(|ps| ps.iter().any(|p| p.distance(m) <= 4.0 * near));
+        if !at_crossing {
+            out.push((if key.1 >= first_virtual { key.0 } else { key.1 }, m));
         }
     }
     out

@@ -81,7 +81,7 @@ impl Mesh {
         positions: &[DVec3],
         faces: &[[u32; 3]],
         near: f64,
-        creases: Option<creases::CreaseCut>,
+        creases: Option<creases::CreaseCut<'_>>,
     ) -> Result<(Mesh, Repairs)> {
         let mut welded = weld(positions, faces);
         let mut moved = positions.to_vec();
@@ -92,7 +92,7 @@ impl Mesh {
         let (original, sharp) = match creases {
             Some(c) => {
                 let sharp = creases::sharp_edges(&moved, &welded, c.angle);
-                let (kept, smoothed) = creases::kept_creases(&moved, sharp, c.min_len, near, c.gap);
+                let (kept, smoothed) = creases::kept_creases(&moved, sharp, &c, near);
                 smoothed_creases = smoothed;
                 creases::cut_creases(&mut moved, &mut welded, kept)
             }

@@ -54,9 +54,24 @@ pub mod principal;
 mod sections;
 mod streamlines;
 pub mod strokes;
-mod verify;
+pub mod verify;
 
 pub use creases::{CREASE_CORNER_DEG, MIN_CREASE_SPACINGS};
+
+/// A network with creases whose quick surface covers this share of the mesh's area is kept
+/// without trying the network without creases ([`sample_mesh`]).
+pub const GOOD_COVERAGE: f64 = 0.97;
+
+/// The network without creases replaces the one with them when its surface covers more of
+/// the mesh by more than this share.
+pub const COVERAGE_MARGIN: f64 = 0.03;
+
+/// The most times [`SampleOptions::adapt`] samples again with 1.5× the planes.
+pub const MAX_REFINES: usize = 2;
+
+/// The most times the mesh is sampled again with the crease curves `surface`'s checks refused
+/// left smooth ([`sample_mesh`]); after the last, refused creases are left out.
+pub const MAX_RESAMPLES: usize = 3;
 pub use cut::SHARP_TURN_DEG;
 use mesh::Mesh;
 pub use mesh::{split_pinches, zip_cracks};
@@ -103,6 +118,12 @@ pub struct SampleOptions {
     /// both sides, docs/design.md §13) and the other curves end on them. Default
     /// [`SampleOptions::DEFAULT_CREASE_DEG`]; `None` (`--no-creases`): every curve smooth.
     pub crease_angle: Option<f64>,
+    /// The mesh is the truth: when the surface of the network sampled covers less than
+    /// [`GOOD_COVERAGE`] of the mesh ([`verify::mesh_coverage`]), the network without creases
+    /// and then with 1.5× the planes (at most [`MAX_REFINES`] times) are tried, and the one that
+    /// covers the most kept. Default `true`; `curvenet sample` turns it off when `--planes` or
+    /// `--crease-angle` is given.
+    pub adapt: bool,
 }
 
 /// The largest sample spacing [`sample_mesh`] takes, relative to the mesh's bounding-box
@@ -152,6 +173,7 @@ impl Default for SampleOptions {
             tilt: Self::DEFAULT_TILT_DEG,
             curves: CurveFamily::Planes,
             crease_angle: Some(Self::DEFAULT_CREASE_DEG),
+            adapt: true,
         }
     }
 }
@@ -210,6 +232,21 @@ pub struct SampleReport {
     pub left_out: Vec<String>,
     /// The error `surface`'s checks still give after those rounds, if any.
     pub unsurfaced: Option<String>,
+    /// Crease curves `surface`'s checks refused in an earlier round, their chains of sharp
+    /// edges left smooth when the mesh was sampled again ([`MAX_RESAMPLES`] times at most):
+    /// each curve's name in that round and the error.
+    pub smoothed_refused: Vec<String>,
+    /// With [`SampleOptions::adapt`]: the share of the mesh's area the network's quick surface
+    /// passes near ([`verify::COVERAGE_DISTANCE`], the default options at
+    /// [`verify::COVERAGE_VERTICES`] vertices); `None` when not measured or when that surface
+    /// failed.
+    pub mesh_coverage: Option<f64>,
+    /// The creases were all left smooth because the network without them covers the mesh
+    /// better by more than [`COVERAGE_MARGIN`]: the number of crease curves, the coverage
+    /// with them and without them (at the same planes).
+    pub creases_dropped: Option<(usize, f64, f64)>,
+    /// The plane counts used when [`SampleOptions::adapt`] took more than those asked for.
+    pub planes: Option<[usize; 3]>,
 }
 
 /// A sample of a polyline before resampling: position, normal, and whether it is a crossing
@@ -353,6 +390,93 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
     let bbox = mesh::check_mesh(positions, faces)?;
     let scales = Scales::new(bbox, opts)?;
     check_options(opts)?;
+    let (net, mut report) = sample_checked(positions, faces, opts, &scales)?;
+    if !opts.adapt {
+        return Ok((net, report));
+    }
+    let diag = scales.diag;
+    let coverage = |net: &Network| verify::mesh_coverage(net, positions, faces, diag);
+    let better = |a: &SampleReport, b: &SampleReport| {
+        a.mesh_coverage.unwrap_or(0.0) > b.mesh_coverage.unwrap_or(0.0) + COVERAGE_MARGIN
+    };
+    report.mesh_coverage = coverage(&net);
+    let mut best = (net, report);
+    let mut opts = opts.clone();
+    // With creases, the sections end on them; where the creases are a tangle (a mesh of
+    // sliver triangles, marching cubes over boxes) a region may end up bounded by no patch.
+    if opts.crease_angle.is_some() && best.1.creases + best.1.smoothed_refused.len() > 0 && !covers(&best.1) {
+        let smooth_opts = SampleOptions { crease_angle: None, ..opts.clone() };
+        let (smooth, mut smooth_report) = sample_checked(positions, faces, &smooth_opts, &scales)?;
+        smooth_report.mesh_coverage = coverage(&smooth);
+        if better(&smooth_report, &best.1) {
+            let cover = |r: &SampleReport| r.mesh_coverage.unwrap_or(0.0);
+            smooth_report.creases_dropped = Some((best.1.creases, cover(&best.1), cover(&smooth_report)));
+            best = (smooth, smooth_report);
+            opts = smooth_opts;
+        }
+    }
+    // Thin parts (limbs, handles) that too few planes cut: more planes.
+    for _ in 0..MAX_REFINES {
+        if covers(&best.1) {
+            break;
+        }
+        let planes = opts.planes.map(|n| (n + n.div_ceil(2)).min(MAX_PLANES));
+        if planes == opts.planes {
+            break;
+        }
+        opts.planes = planes;
+        let (finer, mut finer_report) = sample_checked(positions, faces, &opts, &scales)?;
+        finer_report.mesh_coverage = coverage(&finer);
+        if !better(&finer_report, &best.1) {
+            break;
+        }
+        finer_report.creases_dropped = best.1.creases_dropped;
+        finer_report.planes = Some(planes);
+        best = (finer, finer_report);
+    }
+    Ok(best)
+}
+
+/// Whether the network's quick surface covers [`GOOD_COVERAGE`] of the mesh.
+fn covers(report: &SampleReport) -> bool {
+    report.mesh_coverage.is_some_and(|c| c >= GOOD_COVERAGE)
+}
+
+/// The mesh sampled ([`sample_once`]) and checked ([`verify::surfaceable`]): a crease curve
+/// `surface`'s checks refuse is not just left out, since the sections were cut to end on it;
+/// the mesh is sampled again with its chain smooth, so that they run across (issue 29: a
+/// sampled human figure lost its arms to the creases left out), [`MAX_RESAMPLES`] times at
+/// most.
+fn sample_checked(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    opts: &SampleOptions,
+    scales: &Scales,
+) -> Result<(Network, SampleReport)> {
+    let mut refused: Vec<DVec3> = Vec::new();
+    let mut smoothed_refused: Vec<String> = Vec::new();
+    for round in 0..=MAX_RESAMPLES {
+        let (net, mut report) = sample_once(positions, faces, opts, scales, &refused)?;
+        let (net, creases) = verify::surfaceable(net, &mut report);
+        if creases.points.is_empty() || round == MAX_RESAMPLES {
+            report.smoothed_refused = smoothed_refused;
+            return Ok((net, report));
+        }
+        refused.extend(creases.points);
+        smoothed_refused.extend(creases.why);
+    }
+    unreachable!("the last round returns")
+}
+
+/// One sampling of the mesh at `scales`, the chains along `refused` (samples of crease curves
+/// refused in earlier rounds) left smooth; not yet checked by `verify`.
+fn sample_once(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    opts: &SampleOptions,
+    scales: &Scales,
+    refused: &[DVec3],
+) -> Result<(Network, SampleReport)> {
     let (mesh, repairs) = Mesh::repaired(
         positions,
         faces,
@@ -361,13 +485,15 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
             angle: deg.to_radians(),
             min_len: MIN_CREASE_SPACINGS * scales.spacing,
             gap: scales.gap,
+            refused,
+            refused_within: scales.spacing,
         }),
     )?;
     let principal = opts.curves == CurveFamily::Principal;
     let traces = if principal {
-        principal::trace_principal(&mesh, opts, &scales)
+        principal::trace_principal(&mesh, opts, scales)
     } else {
-        sections::trace_sections(&mesh, opts, &scales)
+        sections::trace_sections(&mesh, opts, scales)
     };
     let mut crossings = traces.crossings;
     let mut boundary_loops = Vec::new();
@@ -389,10 +515,9 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         trimmed: traces.trimmed,
         ..Default::default()
     };
-    let pieces = cut::cut_bad_spots(traced, &traces.spots, &scales, &mut report);
-    let (pieces, loops) = holes::cover_holes(pieces, boundary_loops, opts, &scales, &mut report);
-    let net = network::assemble(pieces, loops, opts, &scales, &mut report)?;
-    let net = verify::surfaceable(net, &mut report);
+    let pieces = cut::cut_bad_spots(traced, &traces.spots, scales, &mut report);
+    let (pieces, loops) = holes::cover_holes(pieces, boundary_loops, opts, scales, &mut report);
+    let net = network::assemble(pieces, loops, opts, scales, &mut report)?;
     Ok((net, report))
 }
 
