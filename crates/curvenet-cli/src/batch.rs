@@ -51,9 +51,9 @@ pub struct BatchArgs {
     resume: bool,
     #[command(flatten)]
     solve: SolveArgs,
-    /// Print nothing but the summary and errors.
-    #[arg(short, long)]
-    quiet: bool,
+    /// The global `-q` (`Cli::quiet`): print nothing but results, errors and warnings.
+    #[arg(skip)]
+    pub(crate) quiet: bool,
 }
 
 pub fn run(a: &BatchArgs) -> Result<(), Error> {

@@ -28,9 +28,9 @@ pub struct ConsolidateArgs {
     /// Also infer the normals of the consolidated curves that have none (as `curvenet normals`).
     #[arg(long)]
     normals: bool,
-    /// Print nothing but errors and warnings.
-    #[arg(short, long)]
-    quiet: bool,
+    /// The global `-q` (`Cli::quiet`): print nothing but results, errors and warnings.
+    #[arg(skip)]
+    pub(crate) quiet: bool,
 }
 
 pub fn run(a: &ConsolidateArgs) -> Result<(), Error> {

@@ -9,8 +9,10 @@ use std::path::{Path, PathBuf};
 
 pub const EVAL_HELP: &str = "\
 Truth: sphere | sphere:r | sphere:cx,cy,cz,r | torus:R,r (axis z) | cylinder:r (axis z) |
-ellipsoid:a,b,c | plane (z = 0) | plane:nx,ny,nz,d | saddle (z = (x²−y²)/2) | a reference mesh
-file (.obj, .ply, .off: exact point-to-triangle distances both ways, Hausdorff and RMS).
+ellipsoid:a,b,c | plane (z = 0) | plane:nx,ny,nz,d | saddle (z = (x²−y²)/2) | lens | lens:r,h
+(two balls of radius r at z = ±h: the `lens` example is 1,0.5) | can | can:r,h (closed cylinder
+of radius r, lids at z = ±h: the `can` example is 1,1) | a reference mesh file (.obj, .ply,
+.off: exact point-to-triangle distances both ways, Hausdorff and RMS).
 Curve vertices are excluded, as in the paper's Table 1: from the PLY 'curve' flag, or the
 vertices within 5% of the mean edge length of the curves of --network.";
 
@@ -54,7 +56,7 @@ pub fn run(a: &EvalArgs) -> Result<(), Error> {
     measurable(&mesh, &a.mesh)?;
     let reference_mesh;
     let (reference, truth_text) = match Truth::parse(&a.truth) {
-        Some(Ok(t)) => (Reference::Analytic(t), format!("{t:?}")),
+        Some(Ok(t)) => (Reference::Analytic(t), a.truth.clone()),
         Some(Err(e)) => return Err(Error::usage(e)),
         None => {
             reference_mesh = curvenet::io::read_mesh(Path::new(&a.truth))?;

@@ -29,18 +29,18 @@ pub struct FitArgs {
     #[arg(long, value_name = "F")]
     curvature: Option<f64>,
     /// Greedy reduction of the feature curves until the largest error is below T × the mesh's
-    /// largest extent / 5 (\[A11\] §6.1 uses 0.1).
+    /// largest extent / 5 ([A11] §6.1 uses 0.1).
     #[arg(long, value_name = "T")]
     reduce: Option<f64>,
     /// Also write the re-surfaced mesh.
     #[arg(long, value_name = "MESH")]
     surface: Option<PathBuf>,
-    /// Time a fresh factor-and-solve against re-solves through the ghost basis (\[A11\] §6.2).
+    /// Time a fresh factor-and-solve against re-solves through the ghost basis ([A11] §6.2).
     #[arg(long)]
     bench: bool,
-    /// Print nothing but errors.
-    #[arg(short, long)]
-    quiet: bool,
+    /// The global `-q` (`Cli::quiet`): print nothing but results, errors and warnings.
+    #[arg(skip)]
+    pub(crate) quiet: bool,
 }
 
 #[derive(Args)]

@@ -34,9 +34,9 @@ pub struct InflateArgs {
     /// Re-solves with centred ghost vertices (0: the paper's ghosts).
     #[arg(long, value_name = "N", default_value_t = 10)]
     ghost_updates: usize,
-    /// Print nothing but errors.
-    #[arg(short, long)]
-    quiet: bool,
+    /// The global `-q` (`Cli::quiet`): print nothing but results, errors and warnings.
+    #[arg(skip)]
+    pub(crate) quiet: bool,
 }
 
 pub fn run(a: &InflateArgs) -> Result<(), Error> {

@@ -68,6 +68,9 @@ See README.md for the formats and the method.";
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Print nothing but results, errors and warnings: no progress, no summary.
+    #[arg(short, long, global = true)]
+    quiet: bool,
 }
 
 #[derive(Subcommand)]
@@ -92,7 +95,7 @@ enum Command {
     Consolidate(consolidate::ConsolidateArgs),
     /// Surface the bundled sphere network and report where the result went and how accurate it is.
     Demo(demo::DemoArgs),
-    /// Measure a mesh against a ground truth: distances, normal angles, N* deviation (\[CG\] §4.3).
+    /// Measure a mesh against a ground truth: distances, normal angles, N* deviation ([CG] §4.3).
     #[command(after_help = eval::EVAL_HELP)]
     Eval(eval::EvalArgs),
     /// Build a curve network on a triangle mesh: plane sections with normals from the mesh.
@@ -149,20 +152,48 @@ fn read_network(path: &std::path::Path) -> Result<curvenet::Network, curvenet::E
 fn main() -> ExitCode {
     clean_up_on_signals();
     let cli = Cli::parse();
+    let quiet = cli.quiet;
     let result = match cli.command {
-        Command::Surface(a) => surface::run(&a),
-        Command::Batch(a) => batch::run(&a),
-        Command::Example(a) => example::run(&a),
+        Command::Surface(mut a) => {
+            a.quiet = quiet;
+            surface::run(&a)
+        }
+        Command::Batch(mut a) => {
+            a.quiet = quiet;
+            batch::run(&a)
+        }
+        Command::Example(mut a) => {
+            a.quiet = quiet;
+            example::run(&a)
+        }
         Command::Demo(a) => demo::run(&a),
-        Command::Normals(a) => normals::run(&a),
-        Command::Consolidate(a) => consolidate::run(&a),
+        Command::Normals(mut a) => {
+            a.quiet = quiet;
+            normals::run(&a)
+        }
+        Command::Consolidate(mut a) => {
+            a.quiet = quiet;
+            consolidate::run(&a)
+        }
         Command::Eval(a) => eval::run(&a),
-        Command::Sample(a) => sample::run(&a),
+        Command::Sample(mut a) => {
+            a.quiet = quiet;
+            sample::run(&a)
+        }
         Command::Study(a) => study::run(&a),
         Command::Bench(a) => bench::run(&a),
-        Command::Render(a) => render::run(&a),
-        Command::Inflate(a) => inflate::run(&a),
-        Command::Fit(a) => fit::run(&a),
+        Command::Render(mut a) => {
+            a.quiet = quiet;
+            render::run(&a)
+        }
+        Command::Inflate(mut a) => {
+            a.quiet = quiet;
+            inflate::run(&a)
+        }
+        Command::Fit(mut a) => {
+            a.quiet = quiet;
+            fit::run(&a)
+        }
         Command::Resurface(a) => fit::run_resurface(&a),
     };
     match result {

@@ -23,9 +23,9 @@ pub struct NormalsArgs {
     /// the larger of 1e-3 × its bounding-box diagonal and 0.1 × the mean sample spacing].
     #[arg(long, value_name = "S")]
     snap: Option<String>,
-    /// Print nothing but errors and warnings.
-    #[arg(short, long)]
-    quiet: bool,
+    /// The global `-q` (`Cli::quiet`): print nothing but results, errors and warnings.
+    #[arg(skip)]
+    pub(crate) quiet: bool,
 }
 
 pub fn run(a: &NormalsArgs) -> Result<(), Error> {

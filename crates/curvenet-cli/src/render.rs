@@ -41,9 +41,9 @@ pub struct RenderArgs {
     /// Surfacing options (network input only).
     #[command(flatten)]
     solve: SolveArgs,
-    /// Print nothing but errors.
-    #[arg(short, long)]
-    quiet: bool,
+    /// The global `-q` (`Cli::quiet`): print nothing but results, errors and warnings.
+    #[arg(skip)]
+    pub(crate) quiet: bool,
 }
 
 /// How the picture looks: shared by `render` and `surface --render`.

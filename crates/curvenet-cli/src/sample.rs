@@ -66,6 +66,9 @@ pub struct SampleArgs {
     /// uneven spacing about the sections' own (random by --seed; crease normals are not kept).
     #[arg(long, value_name = "GAP")]
     as_drawn: Option<f64>,
+    /// The global `-q` (`Cli::quiet`): print nothing but results, errors and warnings.
+    #[arg(skip)]
+    pub(crate) quiet: bool,
 }
 
 fn parse_planes(s: &str) -> Result<[usize; 3], Error> {
@@ -186,7 +189,7 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
             r.smoothed_refused.len()
         );
     }
-    if let Some(p) = r.planes {
+    if let Some(p) = r.planes.filter(|_| !a.quiet) {
         eprintln!(
             "note: sampled with {},{},{} planes: fewer left parts of the mesh out of the network's surface (give --planes to choose)",
             p[0], p[1], p[2]
@@ -217,6 +220,9 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
     }
     if r.pinches > 0 {
         dropped += &format!("; split {} pinch vertex(es) where the mesh boundary touches itself", r.pinches);
+    }
+    if a.quiet {
+        return Ok(());
     }
     out!(
         "{}: {} {}, {} boundary loops, {} creases, {} crossings, {} samples, spacing {:.4e}{dropped}",

@@ -26,11 +26,11 @@ pub struct StudyArgs {
 
 #[derive(Subcommand)]
 enum Study {
-    /// Halve the spacing level by level (\[CG\] §4.4) and report size, time and error per level.
+    /// Halve the spacing level by level ([CG] §4.4) and report size, time and error per level.
     Convergence(ConvergenceArgs),
-    /// Regenerate docs/accuracy.md: \[CG\] Table 1 side by side, convergence, noise, cost.
+    /// Regenerate docs/accuracy.md: [CG] Table 1 side by side, convergence, noise, cost.
     Accuracy(AccuracyArgs),
-    /// Regenerate docs/figures/*.png: every method in curvature and isophotes, \[CG\] Fig. 1 and 5.
+    /// Regenerate docs/figures/*.png: every method in curvature and isophotes, [CG] Fig. 1 and 5.
     Figures(crate::figures::FiguresArgs),
 }
 

@@ -26,9 +26,9 @@ pub struct SurfaceArgs {
     render: Option<PathBuf>,
     #[command(flatten, next_help_heading = "Picture (with --render)")]
     picture: crate::render::PictureArgs,
-    /// Print nothing but errors and warnings.
-    #[arg(short, long)]
-    quiet: bool,
+    /// The global `-q` (`Cli::quiet`): print nothing but results, errors and warnings.
+    #[arg(skip)]
+    pub(crate) quiet: bool,
 }
 
 pub fn run(a: &SurfaceArgs) -> Result<(), Error> {

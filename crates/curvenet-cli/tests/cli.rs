@@ -396,6 +396,51 @@ fn help_documents_every_option() {
     }
 }
 
+/// One set of conventions (issue 33): every subcommand takes `-q` (before or after its name),
+/// no markup escape leaks into any `--help`, `example` without a name lists the names, and
+/// `eval` prints the truth as written, with no debug formatting.
+#[test]
+fn every_subcommand_takes_q_and_help_text_is_plain() {
+    let top = String::from_utf8_lossy(&run(&["--help"]).stdout).into_owned();
+    let commands: Vec<String> = top
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter(|l| !l[2..].starts_with(' '))
+        .filter_map(|l| l.split_whitespace().next().map(str::to_string))
+        .filter(|c| c != "help")
+        .collect();
+    assert!(commands.len() >= 10, "{commands:?}");
+    for c in &commands {
+        let help = String::from_utf8_lossy(&run(&[c, "--help"]).stdout).into_owned();
+        assert!(help.contains("-q, --quiet"), "`{c} --help` has no -q");
+        assert!(!help.contains("\\["), "`{c} --help` shows an escaped bracket");
+    }
+    let dir = scratch("conventions");
+    let net = dir.join("torus.json");
+    let mesh = dir.join("torus.ply");
+    // Without a name: the names, exit 0.
+    let o = run(&["example"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("torus"));
+    // -q before or after the subcommand: nothing on stdout.
+    let o = run(&["-q", "example", "torus", "-o", net.to_str().unwrap()]);
+    assert!(o.status.success() && o.stdout.is_empty(), "{}", stderr(&o));
+    let o = run(&["surface", net.to_str().unwrap(), "-o", mesh.to_str().unwrap(), "--vertices", "3000", "-q"]);
+    assert!(o.status.success() && o.stdout.is_empty(), "{}", stderr(&o));
+    let o = run(&["eval", mesh.to_str().unwrap(), "--truth", "torus:4,2", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("truth  torus:4,2"), "{text}");
+    assert!(!text.contains('{') && !text.contains("DVec3"), "debug formatting in eval: {text}");
+    // The truth kinds of the examples are in `eval --help`.
+    let help = String::from_utf8_lossy(&run(&["eval", "--help"]).stdout).into_owned();
+    for kind in ["lens", "can", "saddle", "ellipsoid"] {
+        assert!(help.contains(kind), "`eval --help` does not document {kind}");
+    }
+}
+
 /// Two outputs naming one file, or an output naming the input: a usage error before any
 /// work, and the existing file is left byte-identical.
 #[test]

@@ -327,12 +327,15 @@ fn count(v: &str) -> std::result::Result<usize, &'static str> {
     v.parse::<usize>().map_err(|_| "a whole number ≥ 0")
 }
 
+/// The choice named `v`; names are spelled with dashes, and underscores are taken for them
+/// (Python keywords and values are written with underscores: `method="normal_control"`).
 fn choice<T: Copy>(
     all: &[T],
     name: fn(T) -> &'static str,
     v: &str,
     takes: &'static str,
 ) -> std::result::Result<T, &'static str> {
+    let v = v.replace('_', "-");
     all.iter().copied().find(|c| name(*c) == v).ok_or(takes)
 }
 

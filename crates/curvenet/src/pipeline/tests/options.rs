@@ -84,3 +84,14 @@ fn every_option_has_help_and_a_default() {
         }
     }
 }
+
+#[test]
+fn named_choices_take_underscores_for_dashes() {
+    // Python writes values as it writes keywords (issue 33): `method="normal_control"`.
+    let mut o = Options::default();
+    o.set("method", "short_paper").unwrap();
+    assert_eq!(o.method, Method::ShortPaper);
+    o.set("method", "normal-control").unwrap();
+    assert_eq!(o.method, Method::NormalControl);
+    assert!(o.set("method", "normal control").is_err());
+}
