@@ -189,7 +189,30 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
             r.smoothed_refused.len()
         );
     }
-    if let Some(p) = r.planes.filter(|_| !a.quiet) {
+    print_warnings(&r, a.quiet);
+    if r.pinches > 0 {
+        dropped += &format!("; split {} pinch vertex(es) where the mesh boundary touches itself", r.pinches);
+    }
+    if a.quiet {
+        return Ok(());
+    }
+    out!(
+        "{}: {} {}, {} boundary loops, {} creases, {} crossings, {} samples, spacing {:.4e}{dropped}",
+        a.output.display(),
+        r.sections,
+        if a.curves == "principal" { "principal curves" } else { "sections" },
+        r.boundary_loops,
+        r.creases,
+        r.crossings,
+        net.num_samples(),
+        r.spacing
+    );
+    Ok(())
+}
+
+/// The warnings of a sampling (and, unless `quiet`, the note on the planes taken) on stderr.
+fn print_warnings(r: &curvenet::sampling::SampleReport, quiet: bool) {
+    if let Some(p) = r.planes.filter(|_| !quiet) {
         eprintln!(
             "note: sampled with {},{},{} planes: fewer left parts of the mesh out of the network's surface (give --planes to choose)",
             p[0], p[1], p[2]
@@ -218,22 +241,4 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
     if let Some(e) = &r.unsurfaced {
         eprintln!("warning: `curvenet surface` will refuse this network with default options: {e}");
     }
-    if r.pinches > 0 {
-        dropped += &format!("; split {} pinch vertex(es) where the mesh boundary touches itself", r.pinches);
-    }
-    if a.quiet {
-        return Ok(());
-    }
-    out!(
-        "{}: {} {}, {} boundary loops, {} creases, {} crossings, {} samples, spacing {:.4e}{dropped}",
-        a.output.display(),
-        r.sections,
-        if a.curves == "principal" { "principal curves" } else { "sections" },
-        r.boundary_loops,
-        r.creases,
-        r.crossings,
-        net.num_samples(),
-        r.spacing
-    );
-    Ok(())
 }
