@@ -40,6 +40,7 @@ from ._curvenet import (
 
 __all__ = [
     "consolidate",
+    "Curve",
     "Error",
     "InputError",
     "Network",
@@ -59,6 +60,37 @@ __all__ = [
     "surface",
     "surface_files",
 ]
+
+class Curve(dict):
+    """One curve of a :class:`Network`, with the keys of the network JSON: ``points`` (k, 3),
+    ``normals`` (k, 3) or ``None`` (unknown: inferred), ``closed``, ``boundary`` (an open
+    border of the surface), ``name`` (used in warnings and errors), ``normals_right`` (k, 3)
+    for a crease (the surface's normal on the right of the curve). A plain ``dict`` with the
+    same keys works as well; an unknown key is an error naming the closest known one.
+
+    >>> import numpy as np, curvenet
+    >>> t = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    >>> ring = curvenet.Curve(np.c_[np.cos(t), np.sin(t), 0 * t], closed=True, name="rim")
+    >>> ring.closed, ring["name"]
+    (True, 'rim')
+    """
+
+    def __init__(self, points, normals=None, *, closed=False, boundary=False, name=None, normals_right=None):
+        super().__init__(points=points, normals=normals, closed=bool(closed), boundary=bool(boundary),
+                         name=name, normals_right=normals_right)
+
+    def __getattr__(self, key):
+        try:
+            return self[key]
+        except KeyError:
+            raise AttributeError(key) from None
+
+    def __repr__(self):
+        n = len(self["points"]) if hasattr(self["points"], "__len__") else "?"
+        what = "closed" if self["closed"] else "open"
+        name = f" {self['name']!r}" if self["name"] is not None else ""
+        return f"Curve({n} points, {what}{', boundary' if self['boundary'] else ''}{name})"
+
 
 #: The surfacing options, from the library's table: ``{name: (value_name, choices, help,
 #: default)}``. The keyword arguments of :func:`surface` and :class:`Surfacer`.

@@ -44,12 +44,35 @@ class SurfacingWarning(UserWarning):
     node: Optional[int]
     patch: Optional[int]
 
-class Network:
-    """A curve network. ``curves``: ``(points (k,3), normals (k,3) or None, closed, boundary)``;
-    ``None`` normals are unknown (inferred)."""
+class Curve(dict[str, Any]):
+    """One curve with the network JSON's keys; a ``dict`` with the same keys works too."""
 
     def __init__(
-        self, curves: Sequence[Tuple[ArrayLike, Optional[ArrayLike], bool, bool]], snap: Optional[float] = None
+        self,
+        points: ArrayLike,
+        normals: Optional[ArrayLike] = None,
+        *,
+        closed: bool = False,
+        boundary: bool = False,
+        name: Optional[str] = None,
+        normals_right: Optional[ArrayLike] = None,
+    ) -> None: ...
+    points: ArrayLike
+    normals: Optional[ArrayLike]
+    closed: bool
+    boundary: bool
+    name: Optional[str]
+    normals_right: Optional[ArrayLike]
+
+class Network:
+    """A curve network. ``curves``: :class:`Curve` objects or dicts with the JSON keys, or
+    ``(points (k,3), normals (k,3) or None, closed, boundary)`` tuples; ``None`` normals are
+    unknown (inferred)."""
+
+    def __init__(
+        self,
+        curves: Sequence[Union[Curve, dict[str, Any], Tuple[ArrayLike, Optional[ArrayLike], bool, bool]]],
+        snap: Optional[float] = None,
     ) -> None: ...
     @property
     def curves(self) -> list[Tuple[FloatArray, Optional[FloatArray], bool, bool]]: ...

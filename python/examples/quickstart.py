@@ -31,7 +31,11 @@ s = np.linspace(-1, 1, 64)
 rim = sample(np.cos(t), np.sin(t))
 xaxis = sample(s, np.zeros_like(s))
 yaxis = sample(np.zeros_like(s), s)
-saddle = curvenet.Network(curves=[(*rim, True, True), (*xaxis, False, False), (*yaxis, False, False)])
+saddle = curvenet.Network(curves=[
+    curvenet.Curve(*rim, closed=True, boundary=True, name="rim"),
+    curvenet.Curve(*xaxis, name="x axis"),
+    curvenet.Curve(*yaxis, name="y axis"),
+])
 V, F, info = curvenet.surface(saddle, vertices=5000)
 print(f"saddle: {len(V)} vertices, max |z − (x² − y²)/2| = "
       f"{np.abs(V[:, 2] - 0.5 * (V[:, 0]**2 - V[:, 1]**2)).max():.1e}")
@@ -62,3 +66,5 @@ if igl is not None:
     W_igl = igl.harmonic(V, F, b, V[b], 2)
     W_ours = curvenet.harmonic(V, F, b, V[b], 2)
     print(f"igl.harmonic vs curvenet.harmonic: max difference {np.abs(W_igl - W_ours).max():.1e}")
+else:
+    print("skipped cell 5 (libigl interop): libigl is not installed (`pip install libigl` to run it)")

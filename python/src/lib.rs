@@ -171,6 +171,67 @@ type CurveTuple<'py> = (Bound<'py, PyAny>, Option<Bound<'py, PyAny>>, bool, bool
 /// A crease curve: `(points, normals, closed, boundary, normals_right or None)`.
 type CreaseTuple<'py> = (Bound<'py, PyAny>, Option<Bound<'py, PyAny>>, bool, bool, Option<Bound<'py, PyAny>>);
 
+/// A curve's parts, from a tuple or a dict ([`curve_parts`]).
+struct CurveParts<'py> {
+    points: Bound<'py, PyAny>,
+    normals: Option<Bound<'py, PyAny>>,
+    closed: bool,
+    boundary: bool,
+    normals_right: Option<Bound<'py, PyAny>>,
+    name: Option<String>,
+}
+
+/// The keys of a curve given as a dict (those of the network JSON).
+const CURVE_KEYS: [&str; 6] = ["points", "normals", "closed", "boundary", "name", "normals_right"];
+
+/// Curve `i` of a list: a `(points, normals or None, closed, boundary[, normals_right])`
+/// tuple, or a dict (a `curvenet.Curve`) with the JSON keys — `points` required, the others
+/// optional; an unknown key is an error naming it and the closest known one.
+fn curve_parts<'py>(i: usize, item: &Bound<'py, PyAny>) -> PyResult<CurveParts<'py>> {
+    if let Ok(d) = item.cast::<PyDict>() {
+        for key in d.keys() {
+            let key: String =
+                key.extract().map_err(|_| usage(format!("curve {i}: the keys of a curve dict are strings")))?;
+            if !CURVE_KEYS.contains(&key.as_str()) {
+                let hint = curvenet::io::closest_key(&key, &CURVE_KEYS)
+                    .map(|k| format!(" — did you mean `{k}`?"))
+                    .unwrap_or_default();
+                return Err(usage(format!(
+                    "curve {i}: unknown key `{key}`{hint} (the keys are {})",
+                    CURVE_KEYS.join(", ")
+                )));
+            }
+        }
+        let get = |k: &str| d.get_item(k).map(|v| v.filter(|v| !v.is_none()));
+        let flag = |k: &str| -> PyResult<bool> {
+            get(k)?.map_or(Ok(false), |v| {
+                v.extract::<bool>().map_err(|_| usage(format!("curve {i}: `{k}` must be True or False")))
+            })
+        };
+        let points = get("points")?.ok_or_else(|| usage(format!("curve {i}: a curve dict needs `points`")))?;
+        let name = get("name")?
+            .map(|v| v.extract::<String>().map_err(|_| usage(format!("curve {i}: `name` must be a string"))))
+            .transpose()?;
+        return Ok(CurveParts {
+            points,
+            normals: get("normals")?,
+            closed: flag("closed")?,
+            boundary: flag("boundary")?,
+            normals_right: get("normals_right")?,
+            name,
+        });
+    }
+    let (points, normals, closed, boundary, normals_right) = match item.extract::<CurveTuple<'_>>() {
+        Ok((p, n, c, b)) => (p, n, c, b, None),
+        Err(_) => item.extract::<CreaseTuple<'_>>().map_err(|_| {
+            usage(format!(
+                "curve {i}: expected a dict (curvenet.Curve) or a tuple (points, normals or None, closed, boundary[, normals_right or None])"
+            ))
+        })?,
+    };
+    Ok(CurveParts { points, normals, closed, boundary, normals_right, name: None })
+}
+
 /// `(message, curve, sample, node, patch)` of a warning.
 type WarningTuple = (String, Option<usize>, Option<usize>, Option<usize>, Option<usize>);
 
@@ -186,22 +247,17 @@ struct PyNetwork {
 
 #[pymethods]
 impl PyNetwork {
-    /// `curves`: a list of `(points (n,3) float64, normals (n,3) float64 or None, closed,
-    /// boundary)`; `None` normals are unknown (inferred). A crease curve has a fifth element,
-    /// `normals_right` (n,3) (the surface's normal on the right of the curve; `None`: smooth).
+    /// `curves`: a list of dicts (`curvenet.Curve`) with the network JSON's keys — `points`
+    /// (n,3) float64, and optionally `normals` (n,3) or None (unknown: inferred), `closed`,
+    /// `boundary`, `name`, `normals_right` (n,3) (a crease: the surface's normal on the right
+    /// of the curve) — or of `(points, normals or None, closed, boundary[, normals_right])`
+    /// tuples.
     #[new]
     #[pyo3(signature = (curves, snap=None))]
     fn new(curves: Vec<Bound<'_, PyAny>>, snap: Option<f64>) -> PyResult<Self> {
         let mut out = Vec::with_capacity(curves.len());
         for (i, item) in curves.iter().enumerate() {
-            let (p, n, closed, boundary, r) = match item.extract::<CurveTuple<'_>>() {
-                Ok((p, n, c, b)) => (p, n, c, b, None),
-                Err(_) => item.extract::<CreaseTuple<'_>>().map_err(|_| {
-                    usage(format!(
-                        "curve {i}: expected (points, normals or None, closed, boundary[, normals_right or None])"
-                    ))
-                })?,
-            };
+            let CurveParts { points: p, normals: n, closed, boundary, normals_right: r, name } = curve_parts(i, item)?;
             let (pn, nn, rn) =
                 (format!("curve {i}: points"), format!("curve {i}: normals"), format!("curve {i}: normals_right"));
             let vectors = |name: &str, a: &Option<Bound<'_, PyAny>>| -> PyResult<Vec<DVec3>> {
@@ -211,7 +267,7 @@ impl PyNetwork {
                 }
             };
             out.push(curvenet::Curve {
-                name: None,
+                name,
                 points: points(&pn, &array2(&pn, &p, Some(3))?)?,
                 normals: vectors(&nn, &n)?,
                 normals_right: vectors(&rn, &r)?,

@@ -576,3 +576,35 @@ def test_a_misspelled_field_is_named_in_a_warning(tmp_path):
         curvenet.read_network(str(path))
     reports = curvenet.surface_files([str(path)], tmp_path / "out", jobs=1, preset="fast", vertices=2000)
     assert any('did you mean "normals"' in w for w in reports[0]["warnings"]), reports[0]["warnings"]
+
+
+def test_curves_as_dicts_and_curve_objects(tmp_path):
+    # The field's habit (issue 33): a curve by its keys, not by position in a tuple.
+    net = curvenet.example("saddle")
+    V1, F1, _ = curvenet.surface(net, preset="fast", vertices=2000)
+    as_dicts = curvenet.Network([dict(points=p, normals=n, closed=c, boundary=b) for p, n, c, b in net.curves])
+    as_curves = curvenet.Network([curvenet.Curve(p, n, closed=c, boundary=b, name=f"c{i}")
+                                  for i, (p, n, c, b) in enumerate(net.curves)])
+    for other in (as_dicts, as_curves):
+        V2, F2, _ = curvenet.surface(other, preset="fast", vertices=2000)
+        np.testing.assert_array_equal(F1, F2)
+        np.testing.assert_array_equal(V1, V2)
+    # Names are kept (written to JSON); closed and boundary default to False.
+    path = tmp_path / "named.json"
+    as_curves.write(str(path))
+    assert '"name": "c0"' in path.read_text().replace('":"', '": "')
+    c = curvenet.Curve(np.zeros((3, 3)))
+    assert (c.closed, c.boundary, c.name, c.normals) == (False, False, None, None)
+    # A misspelled key is named, with the closest known one.
+    p, n, cl, b = net.curves[0]
+    with pytest.raises(curvenet.UsageError, match="unknown key `normal`.*`normals`"):
+        curvenet.Network([dict(points=p, normal=n, closed=cl, boundary=b)])
+    with pytest.raises(curvenet.UsageError, match="needs `points`"):
+        curvenet.Network([dict(normals=n)])
+
+
+def test_method_values_take_underscores():
+    net = curvenet.example("sphere")
+    V1, F1, _ = curvenet.surface(net, method="normal-control", preset="fast", vertices=2000)
+    V2, F2, _ = curvenet.surface(net, method="normal_control", preset="fast", vertices=2000)
+    np.testing.assert_array_equal(V1, V2)

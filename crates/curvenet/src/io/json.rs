@@ -133,8 +133,9 @@ impl<'de> Deserialize<'de> for JsonNetwork {
 }
 
 /// The known key closest to `key` (edit distance at most 2, or one a prefix of the other:
-/// `normal`, `boundry`, `pionts`, `point`), if any.
-fn closest<'a>(key: &str, known: &[&'a str]) -> Option<&'a str> {
+/// `normal`, `boundry`, `pionts`, `point`), if any. Also the Python bindings' check of a
+/// curve given as a dict.
+pub fn closest<'a>(key: &str, known: &[&'a str]) -> Option<&'a str> {
     let k = key.to_ascii_lowercase();
     known
         .iter()

@@ -8,6 +8,7 @@
 pub mod folder;
 mod glb;
 mod json;
+pub use json::closest as closest_key;
 mod mesh;
 mod net;
 mod obj;
