@@ -174,7 +174,8 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     ``"coarse iteration"``, ``"coarse level"``), ``"resample"``,
     ``"tessellate"``, ``"first solve"`` (without a coarse level),
     each ``"iteration"``, ``"solve"``) with its seconds and a detail line — for a progress bar
-    on long runs. An exception it raises is raised after the run.
+    on long runs; ``"warning"`` (seconds 0) carries a warning said before the run, e.g. a
+    ``spacing`` far above the default size (it is also in ``info["warnings"]``). An exception it raises is raised after the run.
     """
     given = dict(method=method, spacing=spacing, vertices=vertices, soft=soft, iterations=iterations, **options)
     return _result(_curvenet._surface(network, _options(preset, given), progress))

@@ -234,6 +234,9 @@ pub(crate) struct Progress {
     iterations: std::cell::Cell<usize>,
     /// Whether the run solves a coarse level first (the default; it reports "coarse start").
     coarse: std::cell::Cell<bool>,
+    /// Warnings the library said before the run's end (stage "warning": printed at once, on
+    /// a terminal or not, even with `--quiet`), so that the run's list does not repeat them.
+    said: std::cell::RefCell<Vec<String>>,
 }
 
 /// Bar units (per mille) of the stages before the solve.
@@ -254,7 +257,17 @@ impl Progress {
             bar.enable_steady_tick(std::time::Duration::from_millis(200));
             bar
         });
-        Progress { bar, iterations: std::cell::Cell::new(0), coarse: std::cell::Cell::new(false) }
+        Progress {
+            bar,
+            iterations: std::cell::Cell::new(0),
+            coarse: std::cell::Cell::new(false),
+            said: Default::default(),
+        }
+    }
+
+    /// Whether the warning `message` was printed during the run ([`Progress::stage`]).
+    pub(crate) fn already_said(&self, message: &str) -> bool {
+        self.said.borrow().iter().any(|m| m == message)
     }
 
     /// Sets how many 3D iterations follow the first solve (0 for a single pass).
@@ -263,6 +276,15 @@ impl Progress {
     }
 
     pub(crate) fn stage(&self, name: &str, seconds: f64, detail: &str) {
+        if name == "warning" {
+            let line = format!("warning: {detail}");
+            match &self.bar {
+                Some(bar) => bar.println(line),
+                None => eprintln!("{line}"),
+            }
+            self.said.borrow_mut().push(detail.to_string());
+            return;
+        }
         let Some(bar) = &self.bar else { return };
         bar.println(format!("  {name:<16}{seconds:>8.3} s   {detail}"));
         let its = self.iterations.get() as u64;

@@ -182,7 +182,7 @@ pub fn run(a: &RenderArgs) -> Result<(), Error> {
         let progress = Progress::new(a.quiet);
         let surface =
             curvenet::surface_with_progress(&network, &options(&a.solve)?, &mut |s, t, d| progress.stage(s, t, d))?;
-        for w in &surface.warnings {
+        for w in surface.warnings.iter().filter(|w| !progress.already_said(&w.message)) {
             eprintln!("warning: {w}");
         }
         Scene::from_surface(&surface).with_network_curves(&network)

@@ -57,7 +57,7 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
         progress.expect_iterations(opts.iterate.iterations);
     }
     let mut surface = curvenet::surface_with_progress(&network, &opts, &mut |s, t, d| progress.stage(s, t, d))?;
-    for w in &surface.warnings {
+    for w in surface.warnings.iter().filter(|w| !progress.already_said(&w.message)) {
         eprintln!("warning: {w}");
     }
     let clock = Instant::now();

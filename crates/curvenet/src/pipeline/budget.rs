@@ -59,3 +59,35 @@ pub(crate) fn check(vertices: f64, options: &Options) -> Result<()> {
         (0.9 * fits / 1000.0).floor() * 1000.0
     )))
 }
+
+/// Seconds of a default run at 10⁶ vertices on the reference machine (docs/performance.md:
+/// 24 s on the sphere), and the exponent of its growth (1M → 2M: ×2.4, about n^1.25).
+const SECONDS_AT_MILLION: f64 = 24.0;
+const GROWTH: f64 = 1.25;
+
+/// The estimated seconds of a run of `vertices` vertices with `options`: the default's
+/// measured time scaled by the method's memory per vertex (its work follows its factor's size).
+pub fn seconds(vertices: f64, options: &Options) -> f64 {
+    let default = bytes_per_vertex(&Options::default());
+    SECONDS_AT_MILLION * (vertices / 1e6).powf(GROWTH) * bytes_per_vertex(options) / default
+}
+
+/// A warning for a `spacing` that makes more than 10× the default vertex count, or a run
+/// estimated over a minute (issue 33: `--spacing 0.01` on the torus example made 3.5M
+/// vertices in 71 s without a word): the count, the time, and `vertices` suggested.
+pub(crate) fn size_warning(spacing: f64, vertices: f64, options: &Options) -> Option<crate::Warning> {
+    let default = crate::pipeline::MeshOptions::DEFAULT_VERTICES as f64;
+    let t = seconds(vertices, options);
+    (vertices > 10.0 * default || t > 60.0).then(|| {
+        crate::Warning::new(format!(
+            "`spacing` {spacing:.3e} makes about {vertices:.2e} vertices ({:.0}× the default {default:.0}), about {} \
+             on a 2-core machine; give `vertices` to choose the size instead",
+            vertices / default,
+            if t < 90.0 { format!("{t:.0} s") } else { format!("{:.0} min", t / 60.0) }
+        ))
+    })
+}
+
+#[cfg(test)]
+#[path = "tests/budget.rs"]
+mod tests;

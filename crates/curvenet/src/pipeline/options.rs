@@ -69,6 +69,9 @@ pub struct MeshOptions {
     /// `spacing`: target edge length `d` of the mesh (and curve sampling distance). Overrides
     /// `vertices`.
     pub spacing: Option<f64>,
+    /// `spacing` given as a share of the network's bounding-box diagonal (`"1%"`: 0.01), used
+    /// when `spacing` is `None`; overrides `vertices`.
+    pub spacing_relative: Option<f64>,
     /// `vertices`: approximate total vertex count, used when `spacing` is not given. `None`:
     /// [`MeshOptions::DEFAULT_VERTICES`].
     pub vertices: Option<usize>,
@@ -96,7 +99,14 @@ impl MeshOptions {
 
 impl Default for MeshOptions {
     fn default() -> Self {
-        MeshOptions { spacing: None, vertices: None, snap: None, patching: Self::DEFAULT_PATCHING, max_memory: None }
+        MeshOptions {
+            spacing: None,
+            spacing_relative: None,
+            vertices: None,
+            snap: None,
+            patching: Self::DEFAULT_PATCHING,
+            max_memory: None,
+        }
     }
 }
 
@@ -367,15 +377,23 @@ pub const OPTIONS: &[OptionSpec] = &[
         name: "spacing",
         value_name: "D",
         choices: &[],
-        help: "Target edge length of the mesh and sampling distance along the curves; overrides `vertices`. \
-               Each segment between nodes gets round(ℓ/D) pieces, so nodes stay exact.",
+        help: "Target edge length of the mesh and sampling distance along the curves, a distance or a share of \
+               the network's bounding-box diagonal (`1%`); overrides `vertices`. Each segment between nodes gets \
+               round(ℓ/D) pieces, so nodes stay exact. A spacing that makes more than 10× the default vertex count, \
+               or a run estimated over a minute, is a warning before the run.",
         unset: Some("from `vertices`"),
         aliases: &[],
         set: |o, v| {
-            o.mesh.spacing = Some(number(v).ok().filter(|d| *d > 0.0).ok_or("a positive distance")?);
+            let takes = "a positive distance, or a percentage of the bounding-box diagonal (`1%`)";
+            if let Some(p) = v.strip_suffix('%') {
+                let p = number(p.trim()).ok().filter(|p| *p > 0.0 && *p <= 100.0).ok_or(takes)?;
+                (o.mesh.spacing, o.mesh.spacing_relative) = (None, Some(p / 100.0));
+            } else {
+                (o.mesh.spacing, o.mesh.spacing_relative) = (Some(number(v).ok().filter(|d| *d > 0.0).ok_or(takes)?), None);
+            }
             Ok(())
         },
-        get: |o| o.mesh.spacing.map(text),
+        get: |o| o.mesh.spacing.map(text).or_else(|| o.mesh.spacing_relative.map(|f| format!("{}%", text(100.0 * f)))),
     },
     OptionSpec {
         name: "vertices",

@@ -89,6 +89,17 @@ pub(crate) fn prepare(
     let start = Instant::now();
     let mut timings = Timings::default();
     check_options(options)?;
+    // A relative spacing (`1%`) is a distance on this network.
+    let resolved;
+    let options = match options.mesh.spacing_relative.filter(|_| options.mesh.spacing.is_none()) {
+        Some(f) => {
+            let mut o = options.clone();
+            o.mesh.spacing = Some(f * network.bounding_box().diagonal());
+            resolved = o;
+            &resolved
+        }
+        None => options,
+    };
     let mut topo = topology(network, &options.mesh, cycles, &mut timings, progress)?;
 
     // Spacing.
@@ -104,6 +115,11 @@ pub(crate) fn prepare(
         )));
     }
     super::budget::check(estimate, options)?;
+    if let Some(w) = options.mesh.spacing.and_then(|d| super::budget::size_warning(d, estimate, options)) {
+        // Said before the run (a progress line front ends print at once), and kept.
+        progress("warning", 0.0, &w.message);
+        topo.warnings.push(w);
+    }
     timings.resample += seconds_since(clock);
 
     let mut st = SolveTimings::default();

@@ -95,3 +95,23 @@ fn named_choices_take_underscores_for_dashes() {
     assert_eq!(o.method, Method::NormalControl);
     assert!(o.set("method", "normal control").is_err());
 }
+
+#[test]
+fn spacing_takes_a_share_of_the_diagonal() {
+    let mut o = Options::default();
+    o.set("spacing", "1%").unwrap();
+    assert_eq!((o.mesh.spacing, o.mesh.spacing_relative), (None, Some(0.01)));
+    assert_eq!(o.get("spacing").as_deref(), Some("1.0%"));
+    o.set("spacing", "0.02").unwrap();
+    assert_eq!((o.mesh.spacing, o.mesh.spacing_relative), (Some(0.02), None));
+    for bad in ["0%", "150%", "-1%", "x%"] {
+        assert!(o.set("spacing", bad).is_err(), "{bad}");
+    }
+    // On a network: the share of its bounding-box diagonal.
+    let net = crate::network::examples::example("sphere").unwrap();
+    let diag = net.bounding_box().diagonal();
+    let mut rel = Options::fast();
+    rel.set("spacing", "5%").unwrap();
+    let s = crate::pipeline::surface(&net, &rel).unwrap();
+    assert!((s.stats.spacing - 0.05 * diag).abs() < 1e-12 * diag, "{} vs {}", s.stats.spacing, 0.05 * diag);
+}

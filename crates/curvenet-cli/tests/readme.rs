@@ -1,0 +1,59 @@
+//! The README's "Use" block and the demo's "Next:" line run as written (issue 33: they named
+//! files a new user does not have). Each line runs in a fresh folder with the repository's
+//! `data/` beside it, in order (later lines use the files of earlier ones); `curvenet` is this
+//! build's binary.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().unwrap()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("curvenet-readme-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs a `curvenet …` line (comments cut, no quoting in these lines) in `dir`; panics with its
+/// stderr unless it exits 0.
+fn run_line(line: &str, dir: &Path) -> String {
+    let code = line.split(" #").next().unwrap().trim();
+    let mut words = code.split_whitespace();
+    assert_eq!(words.next(), Some("curvenet"), "{line}");
+    let o = Command::new(env!("CARGO_BIN_EXE_curvenet")).args(words).current_dir(dir).output().unwrap();
+    assert!(o.status.success(), "`{code}` failed: {}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+#[cfg(unix)]
+#[test]
+fn the_readme_use_block_runs_as_written() {
+    let readme = std::fs::read_to_string(repo().join("README.md")).unwrap();
+    let block: Vec<&str> = readme
+        .lines()
+        .skip_while(|l| *l != "## Use")
+        .skip_while(|l| !l.starts_with("```"))
+        .skip(1)
+        .take_while(|l| !l.starts_with("```"))
+        .filter(|l| l.starts_with("curvenet "))
+        .collect();
+    assert!(block.len() >= 8, "the Use block: {block:?}");
+    let dir = scratch("use");
+    std::os::unix::fs::symlink(repo().join("data"), dir.join("data")).unwrap();
+    for line in &block {
+        run_line(line, &dir);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_demo_next_line_runs_as_written() {
+    let dir = scratch("demo-next");
+    let out = run_line("curvenet demo", &dir);
+    let next = out.lines().find_map(|l| l.strip_prefix("Next: ")).unwrap_or_else(|| panic!("no Next: line in {out}"));
+    run_line(next, &dir);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
