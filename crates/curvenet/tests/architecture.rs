@@ -310,3 +310,50 @@ fn no_function_over_150_lines() {
     assert!(count > 500, "the scan finds the functions: {count}");
     assert!(long.is_empty(), "functions over {MAX_FUNCTION_LINES} lines: {long:?}");
 }
+
+/// `cargo tree`'s resolved features of every crate in the graph of `args`: `name version` →
+/// features.
+fn resolved_features(args: &[&str]) -> BTreeMap<String, String> {
+    let o = std::process::Command::new(env!("CARGO"))
+        .args(["tree", "--locked", "--prefix", "none", "-f", "{p}|{f}"])
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("cargo tree runs");
+    assert!(o.status.success(), "cargo tree {args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    let mut out = BTreeMap::new();
+    for line in String::from_utf8_lossy(&o.stdout).lines() {
+        let Some((p, f)) = line.trim_end_matches(" (*)").split_once('|') else { continue };
+        // `name vX.Y.Z` (a path crate adds its folder; a proc macro "(proc-macro)").
+        let key: String = p.split_whitespace().take(2).collect::<Vec<_>>().join(" ");
+        let f = f.trim_end_matches(" (*)").trim().to_string();
+        let merged = out.entry(key).or_insert_with(String::new);
+        let mut all: BTreeSet<String> =
+            merged.split(',').chain(f.split(',')).filter(|s| !s.is_empty()).map(String::from).collect();
+        all.remove("");
+        *merged = all.into_iter().collect::<Vec<_>>().join(",");
+    }
+    out
+}
+
+/// One build serves the demo, the tests and Python (issue 33): every crate that the CLI's
+/// build shares with the workspace's test build, or with the Python bindings' build, is
+/// resolved with the same features, so that the README's test command and `pip install
+/// ./python` compile none of them again (measured on a fresh target: the test build after the
+/// CLI's compiled only the tests' own crates and the workspace's targets, 86 s; pip after it
+/// only PyO3, NumPy and the bindings, 23 s). A crate that breaks this is named here; give the
+/// library the features the other graph turns on (crates/curvenet/Cargo.toml).
+#[test]
+fn one_build_serves_the_cli_the_tests_and_python() {
+    let cli = resolved_features(&["-p", "curvenet-cli", "-e", "normal,build"]);
+    let tests = resolved_features(&["--workspace", "-e", "normal,build,dev"]);
+    let python = resolved_features(&["-p", "curvenet-py", "-e", "normal,build"]);
+    assert!(cli.contains_key("faer v0.24.4") || cli.keys().any(|k| k.starts_with("faer ")), "{cli:?}");
+    for (other, name) in [(&tests, "the workspace's tests"), (&python, "the Python bindings")] {
+        let differ: Vec<String> = cli
+            .iter()
+            .filter_map(|(k, f)| other.get(k).filter(|g| *g != f).map(|g| format!("{k}: CLI [{f}], {name} [{g}]")))
+            .collect();
+        assert!(differ.is_empty(), "crates built twice, with other features for {name}: {differ:#?}");
+    }
+}
