@@ -15,6 +15,9 @@ pub struct DemoArgs {
     /// Directory for the demo's files.
     #[arg(long, default_value = "curvenet-demo")]
     out: PathBuf,
+    /// The global `-q` (`Cli::quiet`): no progress (the demo's report is its result).
+    #[arg(skip)]
+    pub(crate) quiet: bool,
 }
 
 pub fn run(a: &DemoArgs) -> Result<(), Error> {
@@ -23,7 +26,7 @@ pub fn run(a: &DemoArgs) -> Result<(), Error> {
     let network_path = a.out.join("sphere.json");
     let mesh_path = a.out.join("sphere.ply");
     write_network(&network_path, &net)?;
-    let progress = Progress::new(false);
+    let progress = Progress::new(a.quiet);
     let surface = curvenet::surface_with_progress(&net, &Options::default(), &mut |s, t, d| progress.stage(s, t, d))?;
     curvenet::io::write_mesh(&mesh_path, surface.mesh_data())?;
     let picture_path = a.out.join("sphere.png");

@@ -34,7 +34,8 @@ pub struct ExampleArgs {
 
 pub fn run(a: &ExampleArgs) -> Result<(), Error> {
     let names = || examples::EXAMPLES.iter().map(|e| e.0).collect::<Vec<&str>>().join(", ");
-    if a.list || (a.name.is_none() && a.output.is_none()) {
+    let options_given = a.noise.is_some() || a.no_normals;
+    if a.list || (a.name.is_none() && a.output.is_none() && !options_given) {
         for (name, what) in examples::EXAMPLES {
             out!("{name:<12}{what}");
         }

@@ -164,7 +164,7 @@ fn real_mesh_figure(dir: &Path, data: &Path, vertices: usize) -> Result<(), Erro
         out!("  (real-mesh figure skipped: {} has no {})", data.display(), names.join(", "));
         return Ok(());
     }
-    let opts = SampleOptions { noise: 0.01, shared_nodes: false, ..SampleOptions::default() };
+    let opts = SampleOptions { noise: 0.01, shared_nodes: false, adapt: false, ..SampleOptions::default() };
     let mut scenes = Vec::new();
     for name in names {
         let mesh = curvenet::io::read_mesh(&data.join(name))?;

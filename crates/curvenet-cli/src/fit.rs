@@ -50,6 +50,9 @@ pub struct ResurfaceArgs {
     /// Output mesh (.ply, .obj, .off, .glb).
     #[arg(short, long)]
     output: PathBuf,
+    /// The global `-q` (`Cli::quiet`): no summary line.
+    #[arg(skip)]
+    pub(crate) quiet: bool,
 }
 
 fn stage(
@@ -170,6 +173,9 @@ pub fn run_resurface(a: &ResurfaceArgs) -> Result<(), Error> {
         e => e,
     })?;
     stage(&a.output, &out, &model.faces)?.commit()?;
+    if a.quiet {
+        return Ok(());
+    }
     out!("{}: {} vertices re-surfaced from {} Cauchy vertices", a.output.display(), out.len(), model.constraints.len());
     Ok(())
 }

@@ -68,7 +68,8 @@ See README.md for the formats and the method.";
 struct Cli {
     #[command(subcommand)]
     command: Command,
-    /// Print nothing but results, errors and warnings: no progress, no summary.
+    /// Quiet: no progress, stage lines, notes or summaries; results (e.g. `eval`'s table, a
+    /// batch's totals), warnings and errors still print.
     #[arg(short, long, global = true)]
     quiet: bool,
 }
@@ -166,7 +167,10 @@ fn main() -> ExitCode {
             a.quiet = quiet;
             example::run(&a)
         }
-        Command::Demo(a) => demo::run(&a),
+        Command::Demo(mut a) => {
+            a.quiet = quiet;
+            demo::run(&a)
+        }
         Command::Normals(mut a) => {
             a.quiet = quiet;
             normals::run(&a)
@@ -194,7 +198,10 @@ fn main() -> ExitCode {
             a.quiet = quiet;
             fit::run(&a)
         }
-        Command::Resurface(a) => fit::run_resurface(&a),
+        Command::Resurface(mut a) => {
+            a.quiet = quiet;
+            fit::run_resurface(&a)
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -277,6 +284,9 @@ impl Progress {
 
     pub(crate) fn stage(&self, name: &str, seconds: f64, detail: &str) {
         if name == "warning" {
+            if self.already_said(detail) {
+                return;
+            }
             let line = format!("warning: {detail}");
             match &self.bar {
                 Some(bar) => bar.println(line),

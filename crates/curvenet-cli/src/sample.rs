@@ -172,7 +172,7 @@ pub fn run(a: &SampleArgs) -> Result<(), Error> {
     }
     if r.smoothed_creases > 0 {
         dropped += &format!(
-            "; left {} chain(s) of sharp edges smooth (shorter than {} sample spacings, or within the snapping distance of a longer crease)",
+            "; left {} chain(s) of sharp edges smooth (shorter than {} sample spacings, within the snapping distance of a longer crease, or refused by `surface`)",
             r.smoothed_creases,
             curvenet::sampling::MIN_CREASE_SPACINGS
         );

@@ -221,12 +221,14 @@ impl Options {
     pub fn with_vertices(mut self, n: usize) -> Self {
         self.mesh.vertices = Some(n);
         self.mesh.spacing = None;
+        self.mesh.spacing_relative = None;
         self
     }
 
     /// These options with `spacing = d`.
     pub fn with_spacing(mut self, d: f64) -> Self {
         self.mesh.spacing = Some(d);
+        self.mesh.spacing_relative = None;
         self
     }
 
@@ -393,7 +395,10 @@ pub const OPTIONS: &[OptionSpec] = &[
             }
             Ok(())
         },
-        get: |o| o.mesh.spacing.map(text).or_else(|| o.mesh.spacing_relative.map(|f| format!("{}%", text(100.0 * f)))),
+        // The percentage rounded to 12 digits (7 % is 0.07, and 100 × 0.07 is 7.000000000000001).
+        get: |o| {
+            o.mesh.spacing.map(text).or_else(|| o.mesh.spacing_relative.map(|f| format!("{}%", text((1e12 * f).round() / 1e10))))
+        },
     },
     OptionSpec {
         name: "vertices",

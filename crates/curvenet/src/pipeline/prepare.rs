@@ -173,6 +173,13 @@ pub(super) fn check_options(options: &Options) -> Result<()> {
             return Err(Error::usage(format!("spacing {d} is not a positive distance")));
         }
     }
+    if let Some(f) = options.mesh.spacing_relative {
+        if !(f.is_finite() && f > 0.0 && f <= 1.0) {
+            return Err(Error::usage(format!(
+                "relative spacing {f} is not a share of the diagonal in (0, 1] (`spacing` 0–100%)"
+            )));
+        }
+    }
     if options.mesh.vertices == Some(0) {
         return Err(Error::usage("the vertex count must be positive"));
     }

@@ -204,6 +204,14 @@ impl Refused {
     }
 }
 
+/// How many of `points` (samples of crease curves refused in this round) lie farther than
+/// `within` from every one of `old` (those refused before): 0 when the round refused nothing
+/// new.
+pub(super) fn new_points(old: &[DVec3], points: &[DVec3], within: f64) -> usize {
+    let old = Refused::new(old, within);
+    points.iter().filter(|&&p| !old.near(p)).count()
+}
+
 /// Of each pair of chains of `all` that come within `near` of each other more than `gap` away
 /// from their common vertices, the shorter one (unless the other one is already in). A grid
 /// of cell `near` (widened to half the longest edge) over the vertices finds the close pairs;

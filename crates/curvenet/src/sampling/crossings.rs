@@ -159,11 +159,19 @@ pub(super) fn near_misses(
     first_virtual: usize,
 ) -> Vec<(usize, DVec3)> {
     use crate::geom::closest_params_segment_segment;
-    // Cells as long as the cuts (padded by `near`): each cut in a few cells, and few cuts per
+    // Cells as long as a typical cut (padded by `near`): each cut in a few cells, and few cuts per
     // cell (cells of side `near` put a mesh edge in dozens, and the pairs were found again in
     // each: half of `curvenet sample`'s time on a 4.7k-vertex figure).
-    let mean_cut = cuts.iter().map(|c| c.ends[0].distance(c.ends[1])).sum::<f64>() / cuts.len().max(1) as f64;
-    let h = near.max(mean_cut).max(f64::MIN_POSITIVE);
+    // The median cut: on a mesh of uneven edges (long slivers, dense fillets) the mean would
+    // put a dense region's cuts in one cell.
+    let mut lengths: Vec<f64> = cuts.iter().map(|c| c.ends[0].distance(c.ends[1])).collect();
+    let median = if lengths.is_empty() {
+        0.0
+    } else {
+        let mid = lengths.len() / 2;
+        *lengths.select_nth_unstable_by(mid, f64::total_cmp).1
+    };
+    let h = near.max(median).max(f64::MIN_POSITIVE);
     let mut grid: HashMap<(i64, i64, i64), Vec<u32>> = HashMap::new();
     let mut along = Vec::new();
     for (i, c) in cuts.iter().enumerate() {

@@ -410,7 +410,8 @@ pub fn sample_mesh(positions: &[DVec3], faces: &[[u32; 3]], opts: &SampleOptions
         smooth_report.mesh_coverage = coverage(&smooth);
         if better(&smooth_report, &best.1) {
             let cover = |r: &SampleReport| r.mesh_coverage.unwrap_or(0.0);
-            smooth_report.creases_dropped = Some((best.1.creases, cover(&best.1), cover(&smooth_report)));
+            let creases = best.1.creases + best.1.smoothed_refused.len();
+            smooth_report.creases_dropped = Some((creases, cover(&best.1), cover(&smooth_report)));
             best = (smooth, smooth_report);
             opts = smooth_opts;
         }
@@ -458,7 +459,10 @@ fn sample_checked(
     for round in 0..=MAX_RESAMPLES {
         let (net, mut report) = sample_once(positions, faces, opts, scales, &refused)?;
         let (net, creases) = verify::surfaceable(net, &mut report);
-        if creases.points.is_empty() || round == MAX_RESAMPLES {
+        // A crease refused again (its chain runs on beyond the refused stretch, so it was kept)
+        // would be refused in every round: sample again only for new ones.
+        let new = creases::new_points(&refused, &creases.points, scales.spacing);
+        if new == 0 || round == MAX_RESAMPLES {
             report.smoothed_refused = smoothed_refused;
             return Ok((net, report));
         }
