@@ -129,7 +129,7 @@ def test_wrong_face_and_harmonic_arrays():
 
 
 def test_library_errors_are_value_errors(tmp_path):
-    with pytest.raises(curvenet.UsageError, match="`spacing` takes a positive distance, not \"-1\""):
+    with pytest.raises(curvenet.UsageError, match="`spacing` takes a positive distance, or a percentage of the bounding-box diagonal \\(`1%`\\), not \"-1\""):
         curvenet.surface(curvenet.example("sphere"), spacing=-1)
     with pytest.raises(curvenet.UsageError, match='`method` takes one of normal-control.*not "bogus"'):
         curvenet.surface(curvenet.example("sphere"), method="bogus")
