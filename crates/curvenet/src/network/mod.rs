@@ -82,9 +82,13 @@ impl Curve {
 
 /// Human-readable name of curve `index` for messages: `curve 3 ("equator")`.
 /// Control characters and escape sequences in a name are shown escaped (`\u{1b}`), so that a
-/// file's text never drives the terminal a message is printed on.
+/// file's text never drives the terminal a message is printed on. A curve named by its place in
+/// the input ([`position_name`]: `curve 42`, `curve 42 part 2`, given when curves are left out
+/// or split, so that later messages keep the input's numbers) is shown by that name alone:
+/// one number names one curve in every message of a run (issue 33).
 pub fn curve_label(curves: &[Curve], index: usize) -> String {
     match curves.get(index).and_then(|c| c.name.as_deref()) {
+        Some(name) if is_position_name(name) => name.to_string(),
         Some(name) => {
             let shown: String = name
                 .chars()
@@ -94,6 +98,18 @@ pub fn curve_label(curves: &[Curve], index: usize) -> String {
         }
         None => format!("curve {index}"),
     }
+}
+
+/// The name of input curve `index` by its place: `curve 42` ([`curve_label`]).
+pub fn position_name(index: usize) -> String {
+    format!("curve {index}")
+}
+
+/// Whether `name` is a [`position_name`], or one of its parts (`curve 42 part 2`).
+fn is_position_name(name: &str) -> bool {
+    let Some(rest) = name.strip_prefix("curve ") else { return false };
+    let mut words = rest.split(" part ");
+    words.all(|w| !w.is_empty() && w.bytes().all(|b| b.is_ascii_digit()))
 }
 
 impl Network {

@@ -429,12 +429,12 @@ fn is_overlap(e: &crate::Error) -> Option<usize> {
     }
 }
 
-/// Names every unnamed curve of `net` by its index (`input curve 7`), so that messages keep
-/// naming the input's curves after some were left out.
+/// Names every unnamed curve of `net` by its index (`curve 7`, [`crate::network::position_name`]),
+/// so that messages keep the input's numbers after some were left out.
 fn name_curves(net: &mut Network) {
     for (i, c) in net.curves.iter_mut().enumerate() {
         if c.name.is_none() {
-            c.name = Some(format!("input curve {i}"));
+            c.name = Some(crate::network::position_name(i));
         }
     }
 }

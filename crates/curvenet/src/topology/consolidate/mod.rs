@@ -247,7 +247,8 @@ fn default_gap(d: &Dense, curves: &[Curve], diag: f64, snap: f64) -> f64 {
     (GAP_OVER_P90 * p90).clamp(MIN_GAP * diag, MAX_GAP * diag).max(2.0 * snap)
 }
 
-/// The consolidated curves: an untouched curve as it was given; each piece of a changed one
+/// The consolidated curves: an untouched curve as it was given (named by its input place,
+/// [`crate::network::position_name`], when it had no name); each piece of a changed one
 /// with its input samples, the points it gained (junctions, cut ends) and its averaged points.
 fn emit(d: &Dense, input: &[Curve], pieces: &[Piece], moved: &[bool]) -> Vec<Curve> {
     let mut out = Vec::new();
@@ -262,10 +263,14 @@ fn emit(d: &Dense, input: &[Curve], pieces: &[Piece], moved: &[bool]) -> Vec<Cur
             && mine[0].idx.len() == e - s
             && !mine[0].idx.iter().any(|&j| moved[j]);
         if whole {
-            out.push(curve.clone());
+            // Named by its input place when unnamed, as the changed ones are: the numbers in
+            // messages stay the input's (issue 33).
+            let mut kept = curve.clone();
+            kept.name.get_or_insert_with(|| crate::network::position_name(c));
+            out.push(kept);
             continue;
         }
-        let base = curve.name.clone().unwrap_or_else(|| format!("input curve {c}"));
+        let base = curve.name.clone().unwrap_or_else(|| crate::network::position_name(c));
         let many = mine.len() > 1;
         for (n, p) in mine.iter().enumerate() {
             let keep = |t: usize, j: usize| t == 0 || t + 1 == p.idx.len() || d.sample[j] || moved[j];
