@@ -456,7 +456,8 @@ fn sample_checked(
 ) -> Result<(Network, SampleReport)> {
     let mut refused: Vec<DVec3> = Vec::new();
     let mut smoothed_refused: Vec<String> = Vec::new();
-    for round in 0..=MAX_RESAMPLES {
+    let mut round = 0;
+    loop {
         let (net, mut report) = sample_once(positions, faces, opts, scales, &refused)?;
         let (net, creases) = verify::surfaceable(net, &mut report);
         // A crease refused again (its chain runs on beyond the refused stretch, so it was kept)
@@ -468,8 +469,8 @@ fn sample_checked(
         }
         refused.extend(creases.points);
         smoothed_refused.extend(creases.why);
+        round += 1;
     }
-    unreachable!("the last round returns")
 }
 
 /// One sampling of the mesh at `scales`, the chains along `refused` (samples of crease curves
