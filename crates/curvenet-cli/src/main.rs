@@ -153,55 +153,29 @@ fn read_network(path: &std::path::Path) -> Result<curvenet::Network, curvenet::E
 fn main() -> ExitCode {
     clean_up_on_signals();
     let cli = Cli::parse();
-    let quiet = cli.quiet;
+    // The global `-q` handed to the subcommands that print progress or a summary.
+    macro_rules! quietly {
+        ($a:ident, $run:path) => {{
+            let mut a = $a;
+            a.quiet = cli.quiet;
+            $run(&a)
+        }};
+    }
     let result = match cli.command {
-        Command::Surface(mut a) => {
-            a.quiet = quiet;
-            surface::run(&a)
-        }
-        Command::Batch(mut a) => {
-            a.quiet = quiet;
-            batch::run(&a)
-        }
-        Command::Example(mut a) => {
-            a.quiet = quiet;
-            example::run(&a)
-        }
-        Command::Demo(mut a) => {
-            a.quiet = quiet;
-            demo::run(&a)
-        }
-        Command::Normals(mut a) => {
-            a.quiet = quiet;
-            normals::run(&a)
-        }
-        Command::Consolidate(mut a) => {
-            a.quiet = quiet;
-            consolidate::run(&a)
-        }
+        Command::Surface(a) => quietly!(a, surface::run),
+        Command::Batch(a) => quietly!(a, batch::run),
+        Command::Example(a) => quietly!(a, example::run),
+        Command::Demo(a) => quietly!(a, demo::run),
+        Command::Normals(a) => quietly!(a, normals::run),
+        Command::Consolidate(a) => quietly!(a, consolidate::run),
         Command::Eval(a) => eval::run(&a),
-        Command::Sample(mut a) => {
-            a.quiet = quiet;
-            sample::run(&a)
-        }
+        Command::Sample(a) => quietly!(a, sample::run),
         Command::Study(a) => study::run(&a),
         Command::Bench(a) => bench::run(&a),
-        Command::Render(mut a) => {
-            a.quiet = quiet;
-            render::run(&a)
-        }
-        Command::Inflate(mut a) => {
-            a.quiet = quiet;
-            inflate::run(&a)
-        }
-        Command::Fit(mut a) => {
-            a.quiet = quiet;
-            fit::run(&a)
-        }
-        Command::Resurface(mut a) => {
-            a.quiet = quiet;
-            fit::run_resurface(&a)
-        }
+        Command::Render(a) => quietly!(a, render::run),
+        Command::Inflate(a) => quietly!(a, inflate::run),
+        Command::Fit(a) => quietly!(a, fit::run),
+        Command::Resurface(a) => quietly!(a, fit::run_resurface),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

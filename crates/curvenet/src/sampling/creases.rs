@@ -165,7 +165,7 @@ pub(super) fn kept_creases(positions: &[DVec3], mut sharp: Sharp, cut: &CreaseCu
 /// The samples of refused crease curves ([`CreaseCut::refused`]) in a grid of cell `within`.
 struct Refused {
     /// Per cell: the samples in it.
-    grid: HashMap<[i64; 3], Vec<DVec3>>,
+    grid: HashMap<crate::geom::GridCell, Vec<DVec3>>,
     /// The distance within which a vertex is on them.
     within: f64,
 }
@@ -173,25 +173,21 @@ struct Refused {
 impl Refused {
     fn new(points: &[DVec3], within: f64) -> Refused {
         let within = within.max(f64::MIN_POSITIVE);
-        let mut grid: HashMap<[i64; 3], Vec<DVec3>> = HashMap::new();
+        let mut grid: HashMap<crate::geom::GridCell, Vec<DVec3>> = HashMap::new();
         for &p in points {
-            grid.entry(Self::key(p, within)).or_default().push(p);
+            grid.entry(crate::geom::grid_cell(p, within)).or_default().push(p);
         }
         Refused { grid, within }
     }
 
-    fn key(p: DVec3, cell: f64) -> [i64; 3] {
-        [(p.x / cell).floor() as i64, (p.y / cell).floor() as i64, (p.z / cell).floor() as i64]
-    }
-
     /// Whether `p` lies within the distance of a refused sample.
     fn near(&self, p: DVec3) -> bool {
-        let [x, y, z] = Self::key(p, self.within);
+        let (x, y, z) = crate::geom::grid_cell(p, self.within);
         (-1..=1).any(|dx| {
             (-1..=1).any(|dy| {
                 (-1..=1).any(|dz| {
                     self.grid
-                        .get(&[x + dx, y + dy, z + dz])
+                        .get(&(x + dx, y + dy, z + dz))
                         .is_some_and(|l| l.iter().any(|q| q.distance(p) <= self.within))
                 })
             })
