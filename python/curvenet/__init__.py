@@ -248,14 +248,24 @@ def _crashed(job, why):
 
 
 def _on_dask(client, work, task=None):
-    """``work`` mapped over a Dask cluster: each future's report, or crashed, in input order."""
-    futures = client.map(task or _surface_file, work, pure=False)
-    reports = []
-    for job, future in zip(work, futures):
+    """``work`` mapped over a Dask cluster: each future's report, or crashed, in input order.
+    A worker that dies takes every input it held with it (Dask marks them all suspect), so
+    each input whose future failed is tried again alone, one at a time: only an input that
+    fails on its own is reported crashed."""
+    task = task or _surface_file
+    futures = client.map(task, work, pure=False)
+    reports = [None] * len(work)
+    suspects = []
+    for k, future in enumerate(futures):
         try:
-            reports.append(future.result())
-        except Exception as e:  # KilledWorker and other worker faults: that input's failure
-            reports.append(_crashed(job, f"{type(e).__name__}: {e}"))
+            reports[k] = future.result()
+        except Exception:  # KilledWorker and other worker faults: tried again alone below
+            suspects.append(k)
+    for k in suspects:
+        try:
+            reports[k] = client.submit(task, work[k], pure=False).result()
+        except Exception as e:
+            reports[k] = _crashed(work[k], f"{type(e).__name__}: {e}")
     return reports
 
 
