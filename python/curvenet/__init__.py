@@ -58,6 +58,7 @@ __all__ = [
     "read_mesh",
     "read_network",
     "surface",
+    "surface_curves",
     "surface_files",
 ]
 
@@ -145,9 +146,32 @@ def _result(t):
     return V, F, info
 
 
+def _as_network(network):
+    """A :class:`Network` as it is; a list of curves (``(k,3)`` polylines, :class:`Curve`
+    dicts or tuples, as :class:`Network` takes them) made into one."""
+    if isinstance(network, Network):
+        return network
+    if isinstance(network, (str, bytes)) or not hasattr(network, "__iter__"):
+        raise TypeError(f"expected a curvenet.Network or a list of (k, 3) polylines, got {type(network).__name__}"
+                        + (" (read a file with curvenet.read_network)" if isinstance(network, str) else ""))
+    return Network(curves=list(network))
+
+
+def surface_curves(nodes, edges, normals=None, **options):
+    """Surfaces a curve network given as a graph, as polyscope and meshio hold one: ``nodes``
+    (N,3) float64, ``edges`` (E,2) integer indices into ``nodes`` (from 0), optional
+    ``normals`` (N,3), one per node (else they are inferred). The edges are chained into
+    curves through the nodes they share and split where a node has other than two edges, as
+    the OBJ reader does for an edge soup (an OBJ of the same ``v`` and ``l`` lines gives the
+    same surface). ``options``: those of :func:`surface`. Returns ``(V, F, info)``.
+    """
+    return surface(_curvenet._network_from_edges(nodes, edges, normals), **options)
+
+
 def surface(network, method=None, spacing=None, vertices=None, soft=None, iterations=None,
             *, preset="default", progress=None, **options):
-    """Surfaces ``network`` (a :class:`Network`): ``(V (n,3) float64, F (m,3) int64, info)``.
+    """Surfaces ``network`` (a :class:`Network`, or a list of ``(k,3)`` polylines):
+    ``(V (n,3) float64, F (m,3) int64, info)``.
 
     ``preset``: ``"default"``, ``"fast"`` (planar patching, no 3D iteration: one
     factorisation) or ``"paper"`` (the paper's method as published); every option given (not
@@ -178,7 +202,7 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     ``spacing`` far above the default size (it is also in ``info["warnings"]``). An exception it raises is raised after the run.
     """
     given = dict(method=method, spacing=spacing, vertices=vertices, soft=soft, iterations=iterations, **options)
-    return _result(_curvenet._surface(network, _options(preset, given), progress))
+    return _result(_curvenet._surface(_as_network(network), _options(preset, given), progress))
 
 
 def _surface_file(job):
@@ -331,7 +355,7 @@ def infer_normals(network, *, all=False, snap=None):
     :func:`surface` does this by itself for curves whose normals are ``None``.
     """
     given = {"infer_normals": "all" if all else "missing", "snap": snap}
-    net, report, warnings = _curvenet._infer_normals(network, _options("default", given))
+    net, report, warnings = _curvenet._infer_normals(_as_network(network), _options("default", given))
     warnings = [SurfacingWarning(*w) for w in warnings]
     for w in warnings:
         _warnings.warn(w, stacklevel=2)
@@ -350,7 +374,7 @@ def consolidate(network, *, gap=None, snap=None):
     :class:`SurfacingWarning`. ``surface(..., consolidate="off")`` skips the stage.
     """
     given = {"gap": gap, "snap": snap}
-    net, report, warnings = _curvenet._consolidate(network, _options("default", given))
+    net, report, warnings = _curvenet._consolidate(_as_network(network), _options("default", given))
     warnings = [SurfacingWarning(*w) for w in warnings]
     for w in warnings:
         _warnings.warn(w, stacklevel=2)
@@ -371,7 +395,7 @@ class Surfacer:
     def __init__(self, network, method=None, spacing=None, vertices=None, soft=None,
                  iterations=None, *, preset="default", **options):
         given = dict(method=method, spacing=spacing, vertices=vertices, soft=soft, iterations=iterations, **options)
-        self._inner = _curvenet._Surfacer(network, _options(preset, given))
+        self._inner = _curvenet._Surfacer(_as_network(network), _options(preset, given))
 
     def solve(self):
         """Surfaces the network with the current curves: ``(V, F, info)`` as :func:`surface`."""

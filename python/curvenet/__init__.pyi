@@ -65,13 +65,13 @@ class Curve(dict[str, Any]):
     normals_right: Optional[ArrayLike]
 
 class Network:
-    """A curve network. ``curves``: :class:`Curve` objects or dicts with the JSON keys, or
-    ``(points (k,3), normals (k,3) or None, closed, boundary)`` tuples; ``None`` normals are
-    unknown (inferred)."""
+    """A curve network. ``curves``: :class:`Curve` objects or dicts with the JSON keys,
+    ``(points (k,3), normals (k,3) or None, closed, boundary)`` tuples, or bare ``(k,3)``
+    polylines (open, normals inferred); ``None`` normals are unknown (inferred)."""
 
     def __init__(
         self,
-        curves: Sequence[Union[Curve, dict[str, Any], Tuple[ArrayLike, Optional[ArrayLike], bool, bool]]],
+        curves: Sequence[Union[Curve, dict[str, Any], Tuple[ArrayLike, Optional[ArrayLike], bool, bool], ArrayLike]],
         snap: Optional[float] = None,
     ) -> None: ...
     @property
@@ -85,14 +85,23 @@ def read_network(path: str) -> Network: ...
 def read_mesh(path: str) -> Tuple[FloatArray, IntArray]: ...
 def example(name: str) -> Network: ...
 def examples() -> list[Tuple[str, str]]: ...
+#: A network, or what :class:`Network` takes as its curves (e.g. a list of ``(k,3)`` polylines).
+NetworkLike = Union[Network, Sequence[Union[Curve, dict[str, Any], Tuple[Any, ...], ArrayLike]]]
+
+def surface_curves(
+    nodes: ArrayLike,
+    edges: ArrayLike,
+    normals: Optional[ArrayLike] = None,
+    **options: Any,
+) -> Tuple[FloatArray, IntArray, dict[str, Any]]: ...
 def infer_normals(
-    network: Network, *, all: bool = False, snap: Optional[float] = None
+    network: NetworkLike, *, all: bool = False, snap: Optional[float] = None
 ) -> Tuple[Network, dict[str, Any], list[SurfacingWarning]]: ...
 def consolidate(
-    network: Network, *, gap: Optional[float] = None, snap: Optional[float] = None
+    network: NetworkLike, *, gap: Optional[float] = None, snap: Optional[float] = None
 ) -> Tuple[Network, dict[str, Any], list[SurfacingWarning]]: ...
 def surface(
-    network: Network,
+    network: NetworkLike,
     method: Optional[Method] = None,
     spacing: Optional[float] = None,
     vertices: Optional[int] = None,
@@ -135,7 +144,7 @@ def surface_files(
 class Surfacer:
     def __init__(
         self,
-        network: Network,
+        network: NetworkLike,
         method: Optional[Method] = None,
         spacing: Optional[float] = None,
         vertices: Optional[int] = None,

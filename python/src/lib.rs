@@ -185,8 +185,9 @@ struct CurveParts<'py> {
 const CURVE_KEYS: [&str; 6] = ["points", "normals", "closed", "boundary", "name", "normals_right"];
 
 /// Curve `i` of a list: a `(points, normals or None, closed, boundary[, normals_right])`
-/// tuple, or a dict (a `curvenet.Curve`) with the JSON keys — `points` required, the others
-/// optional; an unknown key is an error naming it and the closest known one.
+/// tuple, a dict (a `curvenet.Curve`) with the JSON keys — `points` required, the others
+/// optional; an unknown key is an error naming it and the closest known one — or a bare
+/// polyline (a `(k, 3)` array or list of points: open, normals inferred).
 fn curve_parts<'py>(i: usize, item: &Bound<'py, PyAny>) -> PyResult<CurveParts<'py>> {
     if let Ok(d) = item.cast::<PyDict>() {
         for key in d.keys() {
@@ -219,6 +220,17 @@ fn curve_parts<'py>(i: usize, item: &Bound<'py, PyAny>) -> PyResult<CurveParts<'
             boundary: flag("boundary")?,
             normals_right: get("normals_right")?,
             name,
+        });
+    }
+    if item.cast::<pyo3::types::PyTuple>().is_err() {
+        // Anything else is a polyline: a (k, 3) array or list of points, open, normals inferred.
+        return Ok(CurveParts {
+            points: item.clone(),
+            normals: None,
+            closed: false,
+            boundary: false,
+            normals_right: None,
+            name: None,
         });
     }
     let (points, normals, closed, boundary, normals_right) = match item.extract::<CurveTuple<'_>>() {
@@ -336,6 +348,23 @@ fn example(name: &str) -> PyResult<PyNetwork> {
         Some(inner) => Ok(PyNetwork { inner, source: None }),
         None => Err(usage(format!("unknown example \"{name}\"; the examples are: {}", names.join(", ")))),
     }
+}
+
+/// A network from polyscope-style arrays: `nodes (N, 3)`, `edges (E, 2)` (0-based), optional
+/// `normals (N, 3)` ([`curvenet::io::network_from_edges`]).
+#[pyfunction]
+#[pyo3(signature = (nodes, edges, normals=None))]
+fn _network_from_edges(
+    nodes: Bound<'_, PyAny>,
+    edges: Bound<'_, PyAny>,
+    normals: Option<Bound<'_, PyAny>>,
+) -> PyResult<PyNetwork> {
+    let nodes = points("nodes", &array2("nodes", &nodes, Some(3))?)?;
+    let e: PyReadonlyArray2<'_, i64> = checked("edges", &edges, 2, Some(2), true)?.extract()?;
+    let edges: Vec<[i64; 2]> = e.as_array().rows().into_iter().map(|r| [r[0], r[1]]).collect();
+    let normals = normals.map(|n| points("normals", &array2("normals", &n, Some(3))?)).transpose()?;
+    let inner = curvenet::io::network_from_edges(&nodes, &edges, normals.as_deref()).map_err(err)?;
+    Ok(PyNetwork { inner, source: None })
 }
 
 #[pyfunction]
@@ -697,6 +726,7 @@ fn _curvenet(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(example, m)?)?;
     m.add_function(wrap_pyfunction!(examples, m)?)?;
+    m.add_function(wrap_pyfunction!(_network_from_edges, m)?)?;
     m.add_function(wrap_pyfunction!(_options, m)?)?;
     m.add_function(wrap_pyfunction!(_option_specs, m)?)?;
     m.add("Error", m.py().get_type::<Error>())?;

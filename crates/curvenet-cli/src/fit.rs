@@ -70,6 +70,7 @@ fn stage(
             mean_curvature: None,
             curve_vertex: None,
             propagated_normals: None,
+            obj_split_normals: true,
         },
     )
 }

@@ -62,6 +62,7 @@ pub fn run(a: &InflateArgs) -> Result<(), Error> {
             mean_curvature: None,
             curve_vertex: Some(&s.on_path),
             propagated_normals: None,
+            obj_split_normals: true,
         },
     )?;
     if !a.quiet {

@@ -18,6 +18,11 @@ pub struct SurfaceArgs {
     output: PathBuf,
     #[command(flatten)]
     solve: SolveArgs,
+    /// Normals of an .obj output: `split` where faces meet at a crease (`f v//vn`: creases
+    /// look sharp in Blender and MeshLab), or `shared`, one per vertex (`f v//v`: every vertex
+    /// shared, so trimesh and Open3D load a watertight mesh).
+    #[arg(long, value_name = "HOW", default_value = "split", value_parser = ["split", "shared"])]
+    obj_normals: String,
     /// Write run statistics (sizes and per-stage timings) as JSON.
     #[arg(long, value_name = "FILE")]
     stats: Option<PathBuf>,
@@ -36,6 +41,14 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
     let progress = Progress::new(a.quiet);
     // Check the output names before any work, so that a typo does not cost a whole run.
     curvenet::io::check_mesh_path(&a.output)?;
+    let obj = a.output.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    if a.obj_normals != "split" && !obj {
+        return Err(Error::usage(format!(
+            "`--obj-normals {}` is for an .obj output; {} is not one",
+            a.obj_normals,
+            a.output.display()
+        )));
+    }
     distinct_paths(&a.input, &[Some(&a.output), a.stats.as_ref(), a.render.as_ref()])?;
     let picture = match &a.render {
         Some(path) => {
@@ -61,7 +74,8 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
         eprintln!("warning: {w}");
     }
     let clock = Instant::now();
-    let staged_mesh = stage_mesh(&a.output, surface.mesh_data())?;
+    let data = curvenet::io::MeshData { obj_split_normals: a.obj_normals == "split", ..surface.mesh_data() };
+    let staged_mesh = stage_mesh(&a.output, data)?;
     let write = clock.elapsed().as_secs_f64();
     surface.stats.peak_memory_bytes = crate::peak_memory_bytes();
     let t = &mut surface.stats.timings;

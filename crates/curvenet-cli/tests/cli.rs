@@ -355,6 +355,58 @@ fn every_format_in_and_out() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Issue 32: an OBJ with its normals split at the creases has more `vn` than `v` lines (its
+/// corners name them); `--obj-normals shared` writes one per vertex (`f a//a`), the same
+/// positions and faces; the flag is refused for another format.
+#[test]
+fn obj_normals_split_at_creases_or_shared() {
+    let dir = scratch("obj-normals");
+    let net = dir.join("can.json");
+    assert_eq!(run(&["example", "can", "-o", net.to_str().unwrap(), "-q"]).status.code(), Some(0));
+    let lines = |p: &Path, head: &str| {
+        std::fs::read_to_string(p)
+            .unwrap()
+            .lines()
+            .filter(|l| l.starts_with(head))
+            .map(String::from)
+            .collect::<Vec<_>>()
+    };
+    let mut meshes = Vec::new();
+    for how in ["split", "shared"] {
+        let out = dir.join(format!("{how}.obj"));
+        let o = run(&[
+            "surface",
+            net.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--vertices",
+            "3000",
+            "-q",
+            "--obj-normals",
+            how,
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let (v, vn, f) = (lines(&out, "v "), lines(&out, "vn "), lines(&out, "f "));
+        if how == "split" {
+            assert!(vn.len() > v.len(), "the can's two crease rims split the normals: {} vn, {} v", vn.len(), v.len());
+        } else {
+            assert_eq!(vn.len(), v.len());
+            assert!(f.iter().all(|l| l[2..].split(' ').all(|c| {
+                let (a, b) = c.split_once("//").unwrap();
+                a == b
+            })));
+        }
+        let m = curvenet::io::read_mesh(&out).unwrap();
+        meshes.push((m.positions, m.faces));
+    }
+    assert_eq!(meshes[0], meshes[1]);
+    let o =
+        run(&["surface", net.to_str().unwrap(), "-o", dir.join("x.ply").to_str().unwrap(), "--obj-normals", "shared"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("is for an .obj output"), "{}", stderr(&o));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn demo_reports_where_the_result_went() {
     let dir = scratch("demo");

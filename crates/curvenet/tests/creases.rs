@@ -127,6 +127,7 @@ fn creases_are_split_in_obj_normals_and_renders() {
         mean_curvature: None,
         curve_vertex: None,
         propagated_normals: None,
+        obj_split_normals: true,
     };
     curvenet::io::write_mesh(&path, data).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();

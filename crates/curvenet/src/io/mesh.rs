@@ -25,6 +25,10 @@ pub struct MeshData<'a> {
     /// The propagated normals `N*` of normal-control (\[CG\] Fig. 5 compares them with the
     /// mesh's), `#V`. PLY only (`pnx pny pnz`).
     pub propagated_normals: Option<&'a [DVec3]>,
+    /// OBJ only: the normals split where faces meet at a crease (`f v//vn`, one `vn` per
+    /// corner group: creases look sharp in Blender and MeshLab), else one `vn` per vertex
+    /// (`f v//v`: every vertex shared, so trimesh and Open3D read a watertight mesh).
+    pub obj_split_normals: bool,
 }
 
 /// A mesh read from a file, with whichever attributes the file carried.
@@ -54,6 +58,7 @@ impl MeshFile {
             mean_curvature: self.mean_curvature.as_deref(),
             curve_vertex: self.curve_vertex.as_deref(),
             propagated_normals: self.propagated_normals.as_deref(),
+            obj_split_normals: true,
         }
     }
 }
@@ -232,14 +237,19 @@ fn put_vec3(buf: &mut Vec<u8>, head: &[u8], p: DVec3) {
 
 /// OBJ with per-corner normals (`f v//vn`): the vertex normals, split where two faces' normals
 /// are more than [`crate::operators::SHARP_SHADING_DEG`] apart so that creases look sharp in
-/// Blender or MeshLab ([`crate::operators::split_normals`]; the positions stay shared).
+/// Blender or MeshLab ([`crate::operators::split_normals`]; the positions stay shared); with
+/// [`MeshData::obj_split_normals`] off, one normal per vertex (`f v//v`).
 fn write_obj(w: &mut dyn Write, m: MeshData<'_>) -> std::io::Result<()> {
     writeln!(w, "# written by curvenet: {} vertices, {} faces", m.positions.len(), m.faces.len())?;
     let angle = crate::operators::SHARP_SHADING_DEG.to_radians();
-    let split = m.normals.map(|ns| crate::operators::split_normals(m.faces, m.positions, ns, angle));
-    let (normals, corners): (&[DVec3], &[[u32; 3]]) = match &split {
-        Some(s) => (&s.normals, &s.corners),
-        None => (&[], m.faces),
+    let split = m
+        .normals
+        .filter(|_| m.obj_split_normals)
+        .map(|ns| crate::operators::split_normals(m.faces, m.positions, ns, angle));
+    let (normals, corners): (&[DVec3], &[[u32; 3]]) = match (&split, m.normals) {
+        (Some(s), _) => (&s.normals, &s.corners),
+        (None, Some(ns)) => (ns, m.faces),
+        (None, None) => (&[], m.faces),
     };
     // One stream of records: the positions, the normals, then the faces.
     let n = m.positions.len();

@@ -12,6 +12,7 @@ pub use json::closest as closest_key;
 mod mesh;
 mod net;
 mod obj;
+pub use obj::network_from_edges;
 
 pub use mesh::{check_mesh_path, mesh_bytes, parse_mesh, read_mesh, stage_mesh, write_mesh, MeshData, MeshFile};
 

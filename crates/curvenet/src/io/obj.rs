@@ -11,8 +11,8 @@
 //! to their start.
 
 use super::{parse_error, parse_f64, Tokens};
-use crate::error::Result;
-use crate::geom::DVec3;
+use crate::error::{Error, Result};
+use crate::geom::{fmt_point, DVec3};
 use crate::network::{Curve, Network};
 use std::io::Write;
 
@@ -163,19 +163,73 @@ fn chain_soup(lines: Vec<(Option<String>, bool, LineIndices)>, v: &[DVec3], sour
     }
     let mut curves = Vec::new();
     for (name, boundary, edges) in groups {
-        for (k, (ids, closed)) in chain_edges(&edges).into_iter().enumerate() {
-            let name = name.as_ref().map(|n| if k == 0 { n.clone() } else { format!("{n}.{k}") });
-            curves.push(Curve {
-                name,
-                points: ids.iter().map(|&i| v[i]).collect(),
-                normals: Vec::new(),
-                normals_right: Vec::new(),
-                closed,
-                boundary,
-            });
-        }
+        curves.extend(chained_curves(v, None, &edges, name.as_deref(), boundary));
     }
     Ok(Network { curves, snap: None })
+}
+
+/// The curves of the undirected `edges` between `points` ([`chain_edges`]), with the points'
+/// `normals` where given; the `k`-th chain of a group named `name` is named `name.k` (the
+/// first `name`).
+fn chained_curves(
+    points: &[DVec3],
+    normals: Option<&[DVec3]>,
+    edges: &[[usize; 2]],
+    name: Option<&str>,
+    boundary: bool,
+) -> Vec<Curve> {
+    chain_edges(edges)
+        .into_iter()
+        .enumerate()
+        .map(|(k, (ids, closed))| Curve {
+            name: name.map(|n| if k == 0 { n.to_string() } else { format!("{n}.{k}") }),
+            points: ids.iter().map(|&i| points[i]).collect(),
+            normals: normals.map_or_else(Vec::new, |n| ids.iter().map(|&i| n[i]).collect()),
+            normals_right: Vec::new(),
+            closed,
+            boundary,
+        })
+        .collect()
+}
+
+/// A network from a graph of points and edges (polyscope's `nodes (N, 3)` and `edges (E, 2)`,
+/// meshio's points and line cells, an OBJ edge soup's `v` and `l`): the edges chained through
+/// the points they share into maximal curves, split where a point has other than two edges
+/// (an OBJ file without groups gives the same curves). `normals`, one per
+/// point, are the curves' normals where given (else they are inferred). Points no edge uses are
+/// ignored; an edge from a point to itself is skipped.
+///
+/// Errors ([`Error::Input`]): an edge index out of range, naming the edge; `normals` not one
+/// per point; a point that is not finite.
+pub fn network_from_edges(points: &[DVec3], edges: &[[i64; 2]], normals: Option<&[DVec3]>) -> Result<Network> {
+    if let Some(n) = normals {
+        if n.len() != points.len() {
+            return Err(Error::input(format!(
+                "{} normals for {} points: give one normal per point (or none, to infer them)",
+                n.len(),
+                points.len()
+            )));
+        }
+    }
+    let mut ids = Vec::with_capacity(edges.len());
+    for (k, &[a, b]) in edges.iter().enumerate() {
+        let at = |i: i64| {
+            usize::try_from(i).ok().filter(|&i| i < points.len()).ok_or_else(|| {
+                Error::input(format!(
+                    "edge {k}: point index {i} is out of range (there are {} points, indexed from 0)",
+                    points.len()
+                ))
+            })
+        };
+        let (a, b) = (at(a)?, at(b)?);
+        if let Some(i) = [a, b].into_iter().find(|&i| !points[i].is_finite()) {
+            return Err(Error::input(format!("edge {k}: point {i} is not finite ({})", fmt_point(points[i]))));
+        }
+        if a != b {
+            ids.push([a, b]);
+        }
+    }
+    Ok(Network { curves: chained_curves(points, normals, &ids, None, false), snap: None })
 }
 
 /// Maximal chains of the undirected `edges` (repeated edges counted once): vertex lists from

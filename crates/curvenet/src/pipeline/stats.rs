@@ -166,6 +166,7 @@ impl Surface {
             mean_curvature: Some(&self.mean_curvature),
             curve_vertex: Some(&self.curve_flags),
             propagated_normals: self.propagated_normals.as_deref(),
+            obj_split_normals: true,
         }
     }
 }

@@ -89,3 +89,44 @@ fn a_network_without_normals_round_trips_without_vn() {
     assert_eq!(back.curves[0].points, net.curves[0].points);
     assert!(back.curves[0].closed && !back.curves[0].has_normals());
 }
+
+/// A graph of points and edges (polyscope's arrays) gives the curves of the OBJ edge soup
+/// with the same `v` and `l` lines; normals follow their points; bad indices name the edge.
+#[test]
+fn network_from_edges_is_the_edge_soup_of_an_obj() {
+    // A figure eight of two loops through point 0, a tail from point 0 (a node of valence 5),
+    // and a self-edge that is skipped.
+    let p: Vec<DVec3> = (0..8).map(|i| DVec3::new(i as f64, (i * i) as f64, 1.0)).collect();
+    let edges: [[i64; 2]; 9] = [[0, 1], [1, 2], [2, 0], [0, 3], [3, 4], [4, 0], [0, 5], [5, 6], [6, 6]];
+    let mut obj = String::new();
+    for q in &p {
+        obj.push_str(&format!("v {} {} {}\n", q.x, q.y, q.z));
+    }
+    for [a, b] in edges {
+        obj.push_str(&format!("l {} {}\n", a + 1, b + 1));
+    }
+    let soup = parse(&obj, "soup.obj").unwrap();
+    let normals: Vec<DVec3> = (0..8).map(|i| DVec3::new(0.0, 0.0, 1.0 + i as f64)).collect();
+    let net = network_from_edges(&p, &edges, Some(&normals)).unwrap();
+    assert_eq!(net.curves.len(), 3);
+    assert_eq!(net.curves.len(), soup.curves.len());
+    for (a, b) in net.curves.iter().zip(&soup.curves) {
+        assert_eq!((&a.points, a.closed, a.boundary), (&b.points, b.closed, b.boundary));
+        assert!(b.normals.is_empty());
+        // Each normal is its point's.
+        for (q, n) in a.points.iter().zip(&a.normals) {
+            assert_eq!(n.z, 1.0 + q.x);
+        }
+    }
+    assert!(network_from_edges(&p, &edges, None).unwrap().curves.iter().all(|c| c.normals.is_empty()));
+    let e = network_from_edges(&p, &[[0, 1], [1, 8]], None).unwrap_err().to_string();
+    assert!(e.contains("edge 1: point index 8 is out of range (there are 8 points"), "{e}");
+    let e = network_from_edges(&p, &[[-1, 1]], None).unwrap_err().to_string();
+    assert!(e.contains("edge 0: point index -1"), "{e}");
+    let e = network_from_edges(&p, &edges, Some(&normals[..3])).unwrap_err().to_string();
+    assert!(e.contains("3 normals for 8 points"), "{e}");
+    let mut bad = p.clone();
+    bad[2].y = f64::NAN;
+    let e = network_from_edges(&bad, &edges, None).unwrap_err().to_string();
+    assert!(e.contains("edge 1: point 2 is not finite"), "{e}");
+}

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs a built wheel (python/build-wheel.sh) into a fresh virtual environment on a PATH
+# without a Rust toolchain, and runs the Python tests against it (issue 32): the wheel must
+# work where nothing can compile it. The tests still compare with the CLI binary that
+# `cargo test --workspace --release` built (target/release/curvenet).
+#
+#   bash python/test-wheel.sh [WHEEL]         # default: the newest in target/wheels
+set -euo pipefail
+cd "$(dirname "$0")/.."
+wheel="${1:-$(ls -t target/wheels/curvenet-*.whl | head -1)}"
+venv="$(mktemp -d)/venv"
+trap 'rm -rf "$(dirname "$venv")"' EXIT
+python3 -m venv "$venv"
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check "$wheel" \
+    pytest libigl trimesh dask distributed
+# No Rust on the PATH (the toolchain lives in ~/.cargo/bin): the wheel is all there is.
+bare="$venv/bin:/usr/local/bin:/usr/bin:/bin"
+for tool in cargo rustc maturin; do
+    if PATH="$bare" command -v "$tool" >/dev/null; then
+        echo "test-wheel: $tool is on the bare PATH ($(PATH="$bare" command -v "$tool"))" >&2
+        exit 1
+    fi
+done
+where=$(cd /tmp && PATH="$bare" python -c 'import curvenet, os; print(os.path.realpath(curvenet._curvenet.__file__))')
+case "$where" in
+    "$(realpath "$venv")"/*) echo "test-wheel: curvenet from $where" ;;
+    *) echo "test-wheel: curvenet was imported from $where, not from the wheel" >&2; exit 1 ;;
+esac
+PATH="$bare" python -m pytest -q -p no:cacheprovider python/tests
