@@ -55,6 +55,7 @@ __all__ = [
     "examples",
     "harmonic",
     "infer_normals",
+    "network_from_edges",
     "read_mesh",
     "read_network",
     "surface",
@@ -157,6 +158,15 @@ def _as_network(network):
     return Network(curves=list(network))
 
 
+def network_from_edges(nodes, edges, normals=None):
+    """A :class:`Network` from a graph, as polyscope and meshio hold one: ``nodes`` (N,3)
+    float64, ``edges`` (E,2) integer indices into ``nodes`` (from 0), optional ``normals``
+    (N,3), one per node (else they are inferred). The edges are chained into curves through
+    the nodes they share and split where a node has other than two edges, as the OBJ reader
+    does for an edge soup; a chain that comes back to its start is a closed curve."""
+    return _curvenet._network_from_edges(nodes, edges, normals)
+
+
 def surface_curves(nodes, edges, normals=None, **options):
     """Surfaces a curve network given as a graph, as polyscope and meshio hold one: ``nodes``
     (N,3) float64, ``edges`` (E,2) integer indices into ``nodes`` (from 0), optional
@@ -165,7 +175,7 @@ def surface_curves(nodes, edges, normals=None, **options):
     the OBJ reader does for an edge soup (an OBJ of the same ``v`` and ``l`` lines gives the
     same surface). ``options``: those of :func:`surface`. Returns ``(V, F, info)``.
     """
-    return surface(_curvenet._network_from_edges(nodes, edges, normals), **options)
+    return surface(network_from_edges(nodes, edges, normals), **options)
 
 
 def surface(network, method=None, spacing=None, vertices=None, soft=None, iterations=None,

@@ -88,6 +88,7 @@ def examples() -> list[Tuple[str, str]]: ...
 #: A network, or what :class:`Network` takes as its curves (e.g. a list of ``(k,3)`` polylines).
 NetworkLike = Union[Network, Sequence[Union[Curve, dict[str, Any], Tuple[Any, ...], ArrayLike]]]
 
+def network_from_edges(nodes: ArrayLike, edges: ArrayLike, normals: Optional[ArrayLike] = None) -> Network: ...
 def surface_curves(
     nodes: ArrayLike,
     edges: ArrayLike,

@@ -11,6 +11,8 @@ use curvenet::{surface, Network, Options};
 /// RMS distance of the surface of `net` to the truth of example `name`.
 fn rms_to_truth(name: &str, net: &Network, options: &Options) -> f64 {
     let s = surface(net, options).unwrap_or_else(|e| panic!("{name}: {e}"));
+    // Every cycle filled: no open border but the boundary curves' (a hole would be a warning).
+    assert!(!s.warnings.iter().any(|w| w.message.contains("the surface is open along")), "{name}: {:?}", s.warnings);
     distance_to_truth(&s.mesh.positions, 0, &example_truth(name).unwrap()).rms
 }
 
@@ -85,6 +87,12 @@ fn sketches_without_normals_surface_through_their_strokes() {
         let share = near as f64 / samples.len() as f64;
         eprintln!("{name}: {:.1}% of the input vertices within 0.5% of the diagonal", 100.0 * share);
         assert!(share >= 0.95, "{name}: only {:.1}% of the input vertices near the surface", 100.0 * share);
+        // The teapot's search leaves a side panel open (issue 30): every stroke is on the
+        // surface, yet there is a hole, and the run says so (it used to be silent).
+        if name == "teapot.obj" {
+            let open = s.warnings.iter().find(|w| w.message.contains("the surface is open along"));
+            assert!(open.is_some_and(|w| w.message.contains("2 border loop(s)")), "{name}: {:?}", s.warnings);
+        }
     }
 }
 

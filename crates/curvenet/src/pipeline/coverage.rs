@@ -158,3 +158,63 @@ pub fn check_reach(mesh: &Mesh) -> Result<f64> {
 #[cfg(test)]
 #[path = "tests/coverage.rs"]
 mod tests;
+
+/// The open borders of `mesh` that no boundary curve runs along: loops of edges in one face
+/// only, between curve vertices (free vertices lie inside patches), not both on a boundary
+/// curve. A closed shape's cycle left unfilled — a hole a person sees at once, while every
+/// stroke around it lies on the surface and the coverage is full — is named in a warning with
+/// the loops' count, length and place (the longest first), or an open border of a sketch whose
+/// curves were not found to be one. `None` when every border is a boundary curve's.
+pub fn check_open_borders(mesh: &Mesh) -> Option<Warning> {
+    let curve = |v: u32| (v as usize) < mesh.num_curve;
+    let mut faces_of: std::collections::HashMap<[u32; 2], u32> = std::collections::HashMap::new();
+    for f in &mesh.faces {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            if curve(a) && curve(b) {
+                *faces_of.entry([a.min(b), a.max(b)]).or_insert(0) += 1;
+            }
+        }
+    }
+    let boundary = |v: u32| mesh.on_boundary.get(v as usize).copied().unwrap_or(false);
+    let mut open: Vec<[u32; 2]> =
+        faces_of.into_iter().filter(|&(e, n)| n == 1 && !(boundary(e[0]) && boundary(e[1]))).map(|(e, _)| e).collect();
+    if open.is_empty() {
+        return None;
+    }
+    open.sort_unstable();
+    // Loops: the edges' connected components (union-find on their vertices).
+    let mut parent: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+    fn root(parent: &mut std::collections::HashMap<u32, u32>, v: u32) -> u32 {
+        let mut r = v;
+        while let Some(&p) = parent.get(&r).filter(|&&p| p != r) {
+            r = p;
+        }
+        parent.insert(v, r);
+        r
+    }
+    for &[a, b] in &open {
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        parent.insert(ra.max(rb), ra.min(rb));
+    }
+    // Per loop: its length and the length-weighted sum of its edges' midpoints (its centre: the
+    // middle of a hole).
+    let mut loops: std::collections::BTreeMap<u32, (f64, DVec3)> = std::collections::BTreeMap::new();
+    for &[a, b] in &open {
+        let (pa, pb) = (mesh.positions[a as usize], mesh.positions[b as usize]);
+        let l = loops.entry(root(&mut parent, a)).or_insert((0.0, DVec3::ZERO));
+        l.0 += pa.distance(pb);
+        l.1 += pa.distance(pb) * 0.5 * (pa + pb);
+    }
+    let total: f64 = loops.values().map(|l| l.0).sum();
+    let (longest, sum) = loops.values().copied().max_by(|x, y| x.0.total_cmp(&y.0)).unwrap_or((0.0, DVec3::ZERO));
+    let at = if longest > 0.0 { sum / longest } else { sum };
+    Some(Warning::new(format!(
+        "the surface is open along {} border loop(s) of curves that are not boundary curves ({total:.3e} long in all; \
+         the longest, {longest:.3e}, near {}): a cycle of curves left unfilled — a hole, where the shape is closed — or \
+         an open border of the sketch; the curves around it could not be made into a patch (look there, or tag a true \
+         border `\"boundary\": true`)",
+        loops.len(),
+        crate::geom::fmt_point(at)
+    )))
+}

@@ -26,3 +26,28 @@ fn a_dome_stays_a_spike_runs_away() {
     assert!(pyramid(0.5)[0] <= MAX_REACH);
     assert!(pyramid(2.0)[0] > MAX_REACH);
 }
+
+/// An octahedron of curve vertices: closed, no open border; one face taken out, a hole — one
+/// loop, its three edges long, centred on the face; the same border on a boundary curve, none.
+#[test]
+fn open_borders_off_the_boundary_curves_are_named_once_per_loop() {
+    let positions = vec![DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y, DVec3::Z, -DVec3::Z];
+    let mut faces = vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4], [1, 0, 5], [2, 1, 5], [3, 2, 5], [0, 3, 5]];
+    let mut mesh =
+        Mesh { positions, faces: faces.clone(), num_curve: 6, on_boundary: vec![false; 6], ..Default::default() };
+    assert!(check_open_borders(&mesh).is_none());
+    faces.remove(0);
+    mesh.faces = faces;
+    let w = check_open_borders(&mesh).expect("a hole").message;
+    let side = 2f64.sqrt();
+    assert!(w.contains("open along 1 border loop(s)"), "{w}");
+    assert!(w.contains(&format!("({:.3e} long in all", 3.0 * side)), "{w}");
+    // The centre of the face's edges' midpoints: (1/3, 1/3, 1/3).
+    assert!(w.contains(&format!("near {}", crate::geom::fmt_point(DVec3::splat(1.0 / 3.0)))), "{w}");
+    mesh.on_boundary = vec![true, true, false, false, true, false];
+    assert!(check_open_borders(&mesh).is_none());
+    // Only free vertices off the curves: their edges are inside patches, never a border.
+    mesh.on_boundary = vec![false; 6];
+    mesh.num_curve = 0;
+    assert!(check_open_borders(&mesh).is_none());
+}
