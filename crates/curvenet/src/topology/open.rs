@@ -79,7 +79,7 @@ pub fn cover_detached_holes(g: &mut Graph, attached: &[bool]) -> Vec<Warning> {
                 .find(|seg| seg.curve == c)
                 .map_or(crate::geom::DVec3::ZERO, |seg| g.nodes[seg.start].position);
             Warning::new(format!(
-                "{} (boundary curve) is no longer reached by other curves (the curves that reached it were left out); \
+                "{} (a boundary curve) is no longer reached by other curves (the curves that reached it were left out); \
                  the hole it bounds near {} cannot be cut out of the patch around it and was covered (the boundary \
                  curve was left out of the surface)",
                 g.labels[c],
@@ -142,17 +142,18 @@ fn trim_dangling_only(g: &mut Graph) -> Result<Vec<Warning>> {
     for (c, stop) in stop_at.iter().enumerate() {
         let Some(v) = stop else { continue };
         let kept = g.segments.iter().enumerate().any(|(s, seg)| seg.curve == c && !removed[s]);
-        let what = if g.curves[c].boundary { "boundary curve" } else { "curve" };
+        // A plain curve's label alone ("curve 60 (curve)" read like a name, issue 33).
+        let what = if g.curves[c].boundary { " (a boundary curve)" } else { "" };
         warnings.push(Warning::new(if kept {
             format!(
-                "{} ({what}) has a dangling end that meets no other curve: the part beyond node {v} at {} bounds \
+                "{}{what} has a dangling end that meets no other curve: the part beyond node {v} at {} bounds \
                  no patch and was left out of the surface",
                 g.labels[c],
                 fmt_point(g.nodes[*v].position)
             )
         } else {
             format!(
-                "{} ({what}) does not meet other curves so as to bound a patch (near {}); it was left out of the surface",
+                "{}{what} does not meet other curves so as to bound a patch (near {}); it was left out of the surface",
                 g.labels[c],
                 fmt_point(g.nodes[*v].position)
             )

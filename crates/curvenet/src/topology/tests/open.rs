@@ -34,7 +34,7 @@ fn a_dangling_curve_is_left_out_with_a_warning_naming_it() {
     assert_eq!((g.nodes.len(), g.segments.len()), (6, 12));
     assert_eq!(warnings.len(), 1);
     assert!(
-        warnings[0].message.starts_with("curve 3 (\"stick\") (curve) does not meet other curves"),
+        warnings[0].message.starts_with("curve 3 (\"stick\") does not meet other curves"),
         "{}",
         warnings[0]
     );
