@@ -4,10 +4,23 @@
 # work where nothing can compile it. The tests still compare with the CLI binary that
 # `cargo test --workspace --release` built (target/release/curvenet).
 #
-#   bash python/test-wheel.sh [WHEEL]         # default: the newest in target/wheels
+#   bash python/test-wheel.sh [WHEEL]         # default: the newest manylinux one in target/wheels
 set -euo pipefail
 cd "$(dirname "$0")/.."
-wheel="${1:-$(ls -t target/wheels/curvenet-*.whl | head -1)}"
+wheel="${1:-$(ls -t target/wheels/curvenet-*-manylinux_*.whl | head -1)}"
+# The wheel is the stable ABI's and manylinux's: its name's tags and its WHEEL file say so.
+case "$(basename "$wheel")" in
+    *-cp39-abi3-manylinux_2_28_x86_64.whl) ;;
+    *) echo "test-wheel: $wheel is not tagged cp39-abi3-manylinux_2_28_x86_64" >&2; exit 1 ;;
+esac
+python3 - "$wheel" <<'PY'
+import sys, zipfile
+with zipfile.ZipFile(sys.argv[1]) as z:
+    meta = next(n for n in z.namelist() if n.endswith(".dist-info/WHEEL"))
+    tags = [l.split(": ", 1)[1] for l in z.read(meta).decode().splitlines() if l.startswith("Tag: ")]
+assert tags and all(t.startswith("cp39-abi3-manylinux") for t in tags), tags
+print("test-wheel: tags", ", ".join(tags))
+PY
 venv="$(mktemp -d)/venv"
 trap 'rm -rf "$(dirname "$venv")"' EXIT
 python3 -m venv "$venv"

@@ -125,9 +125,10 @@ def selection_network(objects, depsgraph):
     return curvenet.Network(curves=curves)
 
 
-def add_surface(context, V, F, info, name="curvenet surface"):
+def add_surface(context, V, F, info, sharp_angle=math.radians(SHARP_DEG), name="curvenet surface"):
     """A new mesh object of ``V``, ``F`` with the attributes ``curvature`` (signed mean
-    curvature) and ``on_curve``, smooth shading, sharp edges at creases; active and selected."""
+    curvature) and ``on_curve``, smooth shading, edges sharp where the faces meet at more than
+    ``sharp_angle`` (creases); active and selected."""
     mesh = bpy.data.meshes.new(name)
     mesh.vertices.add(len(V))
     mesh.vertices.foreach_set("co", np.ascontiguousarray(V, dtype=np.float32).ravel())
@@ -141,7 +142,7 @@ def add_surface(context, V, F, info, name="curvenet surface"):
     on_curve = mesh.attributes.new("on_curve", "BOOLEAN", "POINT")
     on_curve.data.foreach_set("value", np.asarray(info["curve"], dtype=bool))
     mesh.shade_smooth()
-    mesh.set_sharp_from_angle(angle=math.radians(SHARP_DEG))
+    mesh.set_sharp_from_angle(angle=sharp_angle)
     obj = bpy.data.objects.new(name, mesh)
     context.collection.objects.link(obj)
     for o in context.selected_objects:
@@ -180,6 +181,9 @@ class CURVENET_OT_surface(bpy.types.Operator):
                        "(0: from the sketch)", default=0.0, min=0.0, subtype="DISTANCE")
     consolidate: BoolProperty(name="Consolidate strokes", default=True,
                               description="Join strokes that nearly meet, merge overdrawn ones, trim hooks")
+    sharp_angle: FloatProperty(name="Sharp angle", subtype="ANGLE", default=math.radians(SHARP_DEG), min=0.0,
+                               max=math.pi, description="Edges where the faces meet at more than this are marked "
+                               "sharp (creases shade sharp; the surface is the same)")
 
     @classmethod
     def poll(cls, context):
@@ -216,7 +220,7 @@ class CURVENET_OT_surface(bpy.types.Operator):
             self.report({"WARNING"}, f"curvenet: {len(warnings) - MAX_WARNINGS} more warnings (see the console)")
             for w in warnings[MAX_WARNINGS:]:
                 print(f"curvenet warning: {w}")
-        obj = add_surface(context, V, F, info)
+        obj = add_surface(context, V, F, info, self.sharp_angle)
         self.report({"INFO"}, f"{obj.name}: {len(V)} vertices, {len(F)} faces")
         return {"FINISHED"}
 

@@ -166,6 +166,27 @@ def test_a_grease_pencil_sketch_and_an_edge_mesh(scene):
     check_sphere(surface_of_selection(vertices=5000), 1e-3, vertices=5000)
 
 
+def test_creases_are_marked_sharp(scene):
+    """The redo panel's sharp angle reaches the mesh: a cube's twelve edges (an edge-only
+    mesh) surface as a rounded box; at 1° its faces' edges are marked sharp, at 180° none."""
+    verts = [(x, y, z) for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]
+    edges = [(a, b) for a in range(8) for b in range(a + 1, 8) if sum(u != v for u, v in zip(verts[a], verts[b])) == 1]
+    mesh = bpy.data.meshes.new("box")
+    mesh.from_pydata(verts, edges, [])
+    box = link(bpy.data.objects.new("box", mesh))
+    sharp = {}
+    for angle in (math.radians(1), math.pi):
+        for o in bpy.context.selected_objects:
+            o.select_set(False)
+        box.select_set(True)
+        obj = surface_of_selection(vertices=3000, preset="fast", sharp_angle=angle)
+        flags = np.zeros(len(obj.data.edges), dtype=bool)
+        if "sharp_edge" in obj.data.attributes:
+            obj.data.attributes["sharp_edge"].data.foreach_get("value", flags)
+        sharp[angle] = int(flags.sum())
+    assert sharp[math.pi] == 0 and sharp[math.radians(1)] > 0, sharp
+
+
 def test_a_bad_selection_is_a_report_not_a_traceback(scene):
     with pytest.raises(RuntimeError, match="nothing selected"):
         bpy.ops.curvenet.surface()
