@@ -197,11 +197,23 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     With ``method="cauchy"`` a network read from JSON
     keeps its per-curve ``kind``, ``sharpness`` and ``stretch``.
 
-    ``info``: the run's statistics as ``curvenet surface --stats`` writes them (``vertices``,
-    ``faces``, ``spacing``, ``timings``, ...), ``warnings`` (list of
-    :class:`SurfacingWarning`), ``num_curve`` (the first ``num_curve`` vertices lie on the
-    curves), ``curve`` (n,) bool, ``normals`` (n,3), ``mean_curvature`` (n,),
-    ``propagated_normals`` (n,3) or ``None``.
+    ``info``, a dict (every key below is always there; docs/design.md §5 details the statistics):
+
+    - the run's statistics, as ``curvenet surface --stats`` writes them: ``vertices``,
+      ``faces``, ``curve_vertices`` (ints); ``cycles`` (patches), ``components``, ``nodes``,
+      ``segments`` (ints); ``spacing`` (the edge length used); ``method``; ``iterations``,
+      ``iteration_stop`` (``"converged"``, ``"max-iterations"``, ``"degenerate"``,
+      ``"diverging"`` or ``None``), ``iteration_updates`` (list); ``coarse_vertices``,
+      ``coarse_iteration_updates`` (the default's coarse level); ``peak_memory_bytes`` (``None``
+      in Python); ``consolidation`` (dict: ``gap``, ``joined``, ``merged``, ``trimmed``, ...,
+      or ``None``); ``inferred_normals`` (dict of the inference's counts, or ``None`` when every
+      normal was given); ``coverage`` (share of the strokes' length near the surface, or
+      ``None``); ``reach``; ``self_intersections``; ``timings`` (dict of seconds per stage);
+    - ``warnings``: list of :class:`SurfacingWarning`;
+    - ``num_curve``: the first ``num_curve`` vertices lie on the curves; ``curve``: (n,) bool,
+      the same per vertex;
+    - ``normals`` (n,3) unit vertex normals, ``mean_curvature`` (n,) signed (+1 on a unit
+      sphere), ``propagated_normals`` (n,3) (normal-control's ``N*``) or ``None``.
 
     ``progress``: an optional callable ``progress(stage, seconds, detail)``, called after each
     stage (``"nodes"``, ``"cycles"``, the default's coarse level (``"coarse start"``, each

@@ -133,3 +133,21 @@ def test_obj_with_shared_normals_is_watertight_in_trimesh(tmp_path):
     assert not loaded["split.obj"].is_watertight
     assert loaded["shared.obj"].is_watertight and loaded["can.ply"].is_watertight
     assert len(loaded["shared.obj"].vertices) == len(loaded["can.ply"].vertices) < len(loaded["split.obj"].vertices)
+
+
+def test_every_info_key_is_documented():
+    """Issue 33: ``info`` holds what ``surface``'s docstring lists, every key; the statistics
+    are in docs/design.md's table too."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for net in [curvenet.example("sphere"), [c[0] for c in curvenet.example("sphere").curves]]:
+            _, _, info = curvenet.surface(net, vertices=2000, preset="fast")
+            doc = curvenet.surface.__doc__
+            design = (ROOT / "docs" / "design.md").read_text()
+            python_only = {"warnings", "num_curve", "curve", "normals", "mean_curvature", "propagated_normals"}
+            for key in info:
+                assert f"``{key}``" in doc, f"info[{key!r}] is not in surface()'s docstring"
+                if key not in python_only:
+                    assert f"`{key}`" in design, f"info[{key!r}] is not in docs/design.md"
+            for key in info.get("inferred_normals") or {}:
+                assert f"`{key}`" in design, f"inferred_normals[{key!r}] is not in docs/design.md"
