@@ -144,21 +144,23 @@ fn trim_dangling_only(g: &mut Graph) -> Result<Vec<Warning>> {
         let kept = g.segments.iter().enumerate().any(|(s, seg)| seg.curve == c && !removed[s]);
         // A plain curve's label alone ("curve 60 (curve)" read like a name, issue 33).
         let what = if g.curves[c].boundary { " (a boundary curve)" } else { "" };
-        warnings.push(Warning::new(if kept {
-            format!(
-                "{}{what} has a dangling end that meets no other curve: the part beyond node {v} at {} bounds \
+        warnings.push(
+            Warning::new(if kept {
+                format!(
+                    "{}{what} has a dangling end that meets no other curve: the part beyond node {v} at {} bounds \
                  no patch and was left out of the surface",
-                g.labels[c],
-                fmt_point(g.nodes[*v].position)
-            )
-        } else {
-            format!(
+                    g.labels[c],
+                    fmt_point(g.nodes[*v].position)
+                )
+            } else {
+                format!(
                 "{}{what} does not meet other curves so as to bound a patch (near {}); it was left out of the surface",
                 g.labels[c],
                 fmt_point(g.nodes[*v].position)
             )
-        })
-        .curve(c));
+            })
+            .curve(c),
+        );
     }
     if removed.iter().all(|&r| r) {
         let named: Vec<&str> = stop_at
