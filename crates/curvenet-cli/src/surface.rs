@@ -106,8 +106,14 @@ pub fn run(a: &SurfaceArgs) -> Result<(), Error> {
     progress.stage("write", write, &a.output.display().to_string());
     if !a.quiet {
         let s = &surface.stats;
+        // A long run of warnings scrolls the first ones away: the summary counts them.
+        let warned = match surface.warnings.len() {
+            0 => String::new(),
+            1 => ", 1 warning (above)".to_string(),
+            n => format!(", {n} warnings (above)"),
+        };
         out!(
-            "{}: {} vertices ({} on curves), {} faces, {} patches, spacing {:.4e}, {} in {:.3} s",
+            "{}: {} vertices ({} on curves), {} faces, {} patches, spacing {:.4e}, {} in {:.3} s{warned}",
             a.output.display(),
             s.vertices,
             s.curve_vertices,

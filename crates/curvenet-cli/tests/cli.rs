@@ -599,6 +599,11 @@ fn raw_strokes_are_consolidated_and_written_and_off_turns_it_off() {
     assert!(o.status.success(), "{}", stderr(&o));
     let s = std::fs::read_to_string(&stats).unwrap();
     assert!(s.contains("\"consolidation\": {") && s.contains("\"coverage\":"), "{s}");
+    // Without -q the summary line counts the warnings printed above it (issue 33).
+    let o = run(&["surface", raw, "-o", ply.to_str().unwrap()]);
+    let warned = stderr(&o).lines().filter(|l| l.starts_with("warning: ")).count();
+    let summary = String::from_utf8_lossy(&o.stdout).lines().last().unwrap_or_default().to_string();
+    assert!(warned > 1 && summary.ends_with(&format!(", {warned} warnings (above)")), "{warned}: {summary}");
     let o = run(&["surface", raw, "-o", ply.to_str().unwrap(), "-q", "--consolidate", "off"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
 }
