@@ -57,3 +57,48 @@ fn the_demo_next_line_runs_as_written() {
     run_line(next, &dir);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Every option of `curvenet surface --help` is in the README: the surfacing and output options
+/// in the `curvenet surface` table (as `` `--flag``), the picture options (`--render`'s, under
+/// "Picture") in the `curvenet render` section (issue 33: the table lacked `--infer-normals`
+/// and `--render`).
+#[test]
+fn every_surface_option_is_in_the_readme() {
+    let readme = std::fs::read_to_string(repo().join("README.md")).unwrap();
+    let section = |start: &str| -> String {
+        readme
+            .lines()
+            .skip_while(|l| !l.starts_with(start))
+            .skip(1)
+            .take_while(|l| !l.starts_with("### "))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let (table, render) = (section("### `curvenet surface"), section("### `curvenet render"));
+    let o = Command::new(env!("CARGO_BIN_EXE_curvenet")).args(["surface", "--help"]).output().unwrap();
+    let help = String::from_utf8_lossy(&o.stdout).into_owned();
+    let mut picture = false;
+    let mut missing = Vec::new();
+    let mut seen = 0;
+    for line in help.lines() {
+        if !line.starts_with(' ') && line.ends_with(':') {
+            picture = line.starts_with("Picture");
+            continue;
+        }
+        let Some(flag) = line.split_whitespace().find(|w| w.starts_with("--")) else { continue };
+        let flag: String = flag.chars().take_while(|c| *c == '-' || c.is_ascii_alphanumeric()).collect();
+        if !line.trim_start().starts_with('-') || flag == "--help" {
+            continue;
+        }
+        seen += 1;
+        let doc = if picture { &render } else { &table };
+        if !doc.contains(&format!("`{flag}"))
+            && !doc.contains(&format!("`-q, {flag}"))
+            && !doc.contains(&format!("`-o, {flag}"))
+        {
+            missing.push(flag);
+        }
+    }
+    assert!(seen >= 25, "{seen} options read from the help");
+    assert!(missing.is_empty(), "not in the README: {missing:?}");
+}
