@@ -45,7 +45,11 @@ def test_surface_curves_on_polyscope_arrays_gives_the_obj_files_mesh(path):
     a = run(lambda: curvenet.surface_curves(nodes, edges, **opts))
     b = run(lambda: curvenet.surface(curvenet.read_network(str(path)), **opts))
     if isinstance(b, tuple) and isinstance(b[0], str):
-        assert a == b  # the same error, word for word
+        # The same error, word for word but for the curves' names: the OBJ's are their lines
+        # in the file ("curve at line 1234"), the arrays' their numbers.
+        import re
+        same = lambda e: (e[0], re.sub(r"curve (at line )?\d+", "curve N", e[1]))
+        assert isinstance(a, tuple) and same(a) == same(b), (a, b)
         return
     (Va, Fa, ia), (Vb, Fb, ib) = a, b
     assert Va.shape == Vb.shape and Fa.shape == Fb.shape

@@ -8,7 +8,9 @@
 //! may be an **edge soup** as exporters write it (Blender, Houdini: one `l a b` per edge): the
 //! lines of each group are chained into maximal polylines through the vertices they share,
 //! split at vertices where other than two edges meet (nodes) and closed where they come back
-//! to their start.
+//! to their start. A curve of such a file that no group names is named after the line of its
+//! first `l` statement (`curve at line 1234`, [`crate::network::line_name`]): messages point
+//! into the file.
 
 use super::{parse_error, parse_f64, Tokens};
 use crate::error::{Error, Result};
@@ -142,6 +144,9 @@ fn chain_soup(lines: Vec<(Option<String>, bool, LineIndices)>, v: &[DVec3], sour
     // Groups in order of first appearance; edges per group.
     let mut groups: Vec<(Option<String>, bool, Vec<[usize; 2]>)> = Vec::new();
     let mut group_of: std::collections::HashMap<(Option<String>, bool), usize> = std::collections::HashMap::new();
+    // The first `l` line of each edge: an unnamed curve is named after its first line in the
+    // file, where a user can find it (issue 33: "curve 42" of an edge soup was nowhere).
+    let mut line_of: std::collections::HashMap<[usize; 2], usize> = std::collections::HashMap::new();
     for (name, boundary, idx) in lines {
         let mut ids = Vec::with_capacity(idx.len());
         for (line, col, i) in &idx {
@@ -160,10 +165,28 @@ fn chain_soup(lines: Vec<(Option<String>, bool, LineIndices)>, v: &[DVec3], sour
             groups.len() - 1
         });
         groups[g].2.extend(ids.windows(2).filter(|w| w[0] != w[1]).map(|w| [w[0], w[1]]));
+        if let Some(&(line, _, _)) = idx.first() {
+            for w in ids.windows(2) {
+                line_of.entry([w[0].min(w[1]), w[0].max(w[1])]).or_insert(line);
+            }
+        }
     }
     let mut curves = Vec::new();
     for (name, boundary, edges) in groups {
-        curves.extend(chained_curves(v, None, &edges, name.as_deref(), boundary));
+        let mut chained = chained_curves(v, None, &edges, name.as_deref(), boundary);
+        if name.is_none() {
+            // chained_curves keeps the chains' order and vertices: the same chains again, for
+            // their edges' lines.
+            for (c, (ids, closed)) in chained.iter_mut().zip(chain_edges(&edges)) {
+                let mut pairs: Vec<[usize; 2]> = ids.windows(2).map(|w| [w[0], w[1]]).collect();
+                if closed {
+                    pairs.push([ids[ids.len() - 1], ids[0]]);
+                }
+                let first = pairs.iter().filter_map(|&[a, b]| line_of.get(&[a.min(b), a.max(b)])).min();
+                c.name = first.map(|&l| crate::network::line_name(l));
+            }
+        }
+        curves.extend(chained);
     }
     Ok(Network { curves, snap: None })
 }

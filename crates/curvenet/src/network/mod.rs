@@ -105,9 +105,17 @@ pub fn position_name(index: usize) -> String {
     format!("curve {index}")
 }
 
-/// Whether `name` is a [`position_name`], or one of its parts (`curve 42 part 2`).
+/// The name of an unnamed curve of an OBJ file by the line of its first `l` statement:
+/// `curve at line 1234` ([`curve_label`] shows it alone, as a [`position_name`]).
+pub fn line_name(line: usize) -> String {
+    format!("curve at line {line}")
+}
+
+/// Whether `name` is a [`position_name`] or a [`line_name`], or one of their parts (`curve 42
+/// part 2`).
 fn is_position_name(name: &str) -> bool {
     let Some(rest) = name.strip_prefix("curve ") else { return false };
+    let rest = rest.strip_prefix("at line ").unwrap_or(rest);
     let mut words = rest.split(" part ");
     words.all(|w| !w.is_empty() && w.bytes().all(|b| b.is_ascii_digit()))
 }
