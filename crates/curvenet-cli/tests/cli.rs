@@ -355,6 +355,25 @@ fn every_format_in_and_out() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Issue 33: `curvenet normals` makes no surface, and its warnings do not speak of one: a
+/// duplicate stroke is left out of the network written, a curve that bounds no patch is in it
+/// (with its normals) and would be left out of a surface made from it.
+#[test]
+fn normals_warnings_speak_of_the_network() {
+    let dir = scratch("normals-words");
+    let flower = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/sketches/flower.obj");
+    let out = dir.join("flower.json");
+    let o = run(&["normals", flower, "-o", out.to_str().unwrap(), "-q"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(!err.contains("left out of the surface"), "{err}");
+    assert!(err.contains("it was left out of the network"), "{err}");
+    assert!(err.contains("would be left out of a surface made from the network (its normals were inferred"), "{err}");
+    let net = curvenet::io::read_network(&out).unwrap();
+    assert!(net.curves.iter().all(|c| c.has_normals()));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Issue 32: an OBJ with its normals split at the creases has more `vn` than `v` lines (its
 /// corners name them); `--obj-normals shared` writes one per vertex (`f a//a`), the same
 /// positions and faces; the flag is refused for another format.

@@ -62,7 +62,22 @@ pub fn needs_inference(network: &Network, options: &Options) -> bool {
 /// strokes, curves that bound no 2-manifold). A network whose orientation contradicts itself
 /// (a Möbius-like network) is a warning naming the segments, not an error.
 pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
-    infer(network, options, true)
+    let mut inferred = infer(network, options, true)?;
+    for w in &mut inferred.warnings {
+        w.message = without_a_surface(&w.message);
+    }
+    Ok(inferred)
+}
+
+/// A warning of the inference said where no surface is made (`curvenet normals`, Python's
+/// `infer_normals`; issue 33): a stroke removed as a duplicate is left out of the network
+/// written; a curve that bounds no patch is in it, with its normals, and would be left out of a
+/// surface.
+fn without_a_surface(message: &str) -> String {
+    message.replace(": it was left out of the surface", ": it was left out of the network").replace(
+        "was left out of the surface",
+        "would be left out of a surface made from the network (its normals were inferred all the same)",
+    )
 }
 
 /// Normal inference and preparation for a network that needs it. Two choices of the patches
