@@ -208,7 +208,9 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
       in Python); ``consolidation`` (dict: ``gap``, ``joined``, ``merged``, ``trimmed``, ...,
       or ``None``); ``inferred_normals`` (dict of the inference's counts, or ``None`` when every
       normal was given); ``coverage`` (share of the strokes' length near the surface, or
-      ``None``); ``reach``; ``self_intersections``; ``timings`` (dict of seconds per stage);
+      ``None``); ``open_borders`` (loops of open border off the boundary curves: holes, or a
+      sketch's border; ``None`` where not measured); ``reach``; ``self_intersections``;
+      ``timings`` (dict of seconds per stage);
     - ``warnings``: list of :class:`SurfacingWarning`;
     - ``num_curve``: the first ``num_curve`` vertices lie on the curves; ``curve``: (n,) bool,
       the same per vertex;

@@ -13,6 +13,9 @@ fn rms_to_truth(name: &str, net: &Network, options: &Options) -> f64 {
     let s = surface(net, options).unwrap_or_else(|e| panic!("{name}: {e}"));
     // Every cycle filled: no open border but the boundary curves' (a hole would be a warning).
     assert!(!s.warnings.iter().any(|w| w.message.contains("the surface is open along")), "{name}: {:?}", s.warnings);
+    // Measured where normals were inferred (with the coverage); none open either way.
+    assert_eq!(s.stats.open_borders.is_some(), !net.has_all_normals(), "{name}");
+    assert_eq!(s.stats.open_borders.unwrap_or(0), 0, "{name}");
     distance_to_truth(&s.mesh.positions, 0, &example_truth(name).unwrap()).rms
 }
 
@@ -92,6 +95,7 @@ fn sketches_without_normals_surface_through_their_strokes() {
         if name == "teapot.obj" {
             let open = s.warnings.iter().find(|w| w.message.contains("the surface is open along"));
             assert!(open.is_some_and(|w| w.message.contains("2 border loop(s)")), "{name}: {:?}", s.warnings);
+            assert_eq!(s.stats.open_borders, Some(2));
         }
     }
 }

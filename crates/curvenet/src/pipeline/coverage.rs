@@ -164,8 +164,9 @@ mod tests;
 /// curve. A closed shape's cycle left unfilled — a hole a person sees at once, while every
 /// stroke around it lies on the surface and the coverage is full — is named in a warning with
 /// the loops' count, length and place (the longest first), or an open border of a sketch whose
-/// curves were not found to be one. `None` when every border is a boundary curve's.
-pub fn check_open_borders(mesh: &Mesh) -> Option<Warning> {
+/// curves were not found to be one. Returns the number of loops and the warning (`None` when
+/// every border is a boundary curve's).
+pub fn check_open_borders(mesh: &Mesh) -> (usize, Option<Warning>) {
     let curve = |v: u32| (v as usize) < mesh.num_curve;
     let mut faces_of: std::collections::HashMap<[u32; 2], u32> = std::collections::HashMap::new();
     for f in &mesh.faces {
@@ -180,7 +181,7 @@ pub fn check_open_borders(mesh: &Mesh) -> Option<Warning> {
     let mut open: Vec<[u32; 2]> =
         faces_of.into_iter().filter(|&(e, n)| n == 1 && !(boundary(e[0]) && boundary(e[1]))).map(|(e, _)| e).collect();
     if open.is_empty() {
-        return None;
+        return (0, None);
     }
     open.sort_unstable();
     // Loops: the edges' connected components (union-find on their vertices).
@@ -209,12 +210,13 @@ pub fn check_open_borders(mesh: &Mesh) -> Option<Warning> {
     let total: f64 = loops.values().map(|l| l.0).sum();
     let (longest, sum) = loops.values().copied().max_by(|x, y| x.0.total_cmp(&y.0)).unwrap_or((0.0, DVec3::ZERO));
     let at = if longest > 0.0 { sum / longest } else { sum };
-    Some(Warning::new(format!(
+    let warning = Warning::new(format!(
         "the surface is open along {} border loop(s) of curves that are not boundary curves ({total:.3e} long in all; \
          the longest, {longest:.3e}, near {}): a cycle of curves left unfilled — a hole, where the shape is closed — or \
          an open border of the sketch; the curves around it could not be made into a patch (look there, or tag a true \
          border `\"boundary\": true`)",
         loops.len(),
         crate::geom::fmt_point(at)
-    )))
+    ));
+    (loops.len(), Some(warning))
 }

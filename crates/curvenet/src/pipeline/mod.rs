@@ -62,7 +62,9 @@ pub fn surface_with_progress(
         let mut warnings = Vec::new();
         let clock = crate::solve::timing::Instant::now();
         surface.stats.coverage = Some(coverage::check_coverage(&surface.mesh, original, &mut warnings)?);
-        warnings.extend(coverage::check_open_borders(&surface.mesh));
+        let (loops, open) = coverage::check_open_borders(&surface.mesh);
+        surface.stats.open_borders = Some(loops);
+        warnings.extend(open);
         surface.stats.timings.total += crate::solve::timing::seconds_since(clock);
         surface.warnings.extend(warnings);
     }

@@ -271,6 +271,7 @@ fn finish(
         coverage: None,
         reach: 0.0,
         self_intersections: 0,
+        open_borders: None,
         peak_memory_bytes: None,
         timings,
     };

@@ -94,6 +94,10 @@ pub struct Stats {
     /// Pairs of triangles that share no vertex and cross (`geom::intersect`): a surface that
     /// passes through itself, named in a warning.
     pub self_intersections: usize,
+    /// Loops of the surface's open border that no boundary curve runs along (cycles left
+    /// unfilled, or a sketch's border not found to be one; `coverage::check_open_borders`),
+    /// counted with the coverage; `None` where that is not measured.
+    pub open_borders: Option<usize>,
     /// What consolidation did (`None` with `consolidate = off`).
     pub consolidation: Option<crate::topology::consolidate::Consolidation>,
     /// Seconds per stage.

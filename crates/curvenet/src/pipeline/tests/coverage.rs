@@ -35,19 +35,21 @@ fn open_borders_off_the_boundary_curves_are_named_once_per_loop() {
     let mut faces = vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4], [1, 0, 5], [2, 1, 5], [3, 2, 5], [0, 3, 5]];
     let mut mesh =
         Mesh { positions, faces: faces.clone(), num_curve: 6, on_boundary: vec![false; 6], ..Default::default() };
-    assert!(check_open_borders(&mesh).is_none());
+    assert_eq!(check_open_borders(&mesh).0, 0);
+    assert!(check_open_borders(&mesh).1.is_none());
     faces.remove(0);
     mesh.faces = faces;
-    let w = check_open_borders(&mesh).expect("a hole").message;
+    assert_eq!(check_open_borders(&mesh).0, 1);
+    let w = check_open_borders(&mesh).1.expect("a hole").message;
     let side = 2f64.sqrt();
     assert!(w.contains("open along 1 border loop(s)"), "{w}");
     assert!(w.contains(&format!("({:.3e} long in all", 3.0 * side)), "{w}");
     // The centre of the face's edges' midpoints: (1/3, 1/3, 1/3).
     assert!(w.contains(&format!("near {}", crate::geom::fmt_point(DVec3::splat(1.0 / 3.0)))), "{w}");
     mesh.on_boundary = vec![true, true, false, false, true, false];
-    assert!(check_open_borders(&mesh).is_none());
+    assert_eq!(check_open_borders(&mesh), (0, None));
     // Only free vertices off the curves: their edges are inside patches, never a border.
     mesh.on_boundary = vec![false; 6];
     mesh.num_curve = 0;
-    assert!(check_open_borders(&mesh).is_none());
+    assert_eq!(check_open_borders(&mesh), (0, None));
 }
