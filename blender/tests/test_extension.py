@@ -107,7 +107,6 @@ def test_three_great_circle_curves_give_the_sphere(scene):
         spline.use_cyclic_u = True
         obj = link(bpy.data.objects.new(f"circle{axis}", cu))
         if axis == 2:
-            obj.rotation_euler = (0.0, 0.0, 0.0)
             obj.matrix_world = np.eye(4)[[2, 0, 1, 3]].T.tolist()
         objs.append(obj)
     bpy.context.view_layer.update()

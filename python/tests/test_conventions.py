@@ -90,14 +90,14 @@ def test_surface_curves_takes_normals_per_node_and_checks_the_edges():
 def test_a_list_of_polylines_is_a_network_everywhere():
     t = np.linspace(0, 2 * np.pi, 65)[:-1]
     c, s, z = np.cos(t), np.sin(t), np.zeros_like(t)
-    # Three great circles as closed polylines (the first point repeated at the end: an OBJ
-    # `l` line's closed form is not a thing for bare arrays, so closed=True goes by dict).
+    # Three great circles: closed curves (dicts with closed=True) as the reference, and the
+    # same circles as bare open polylines whose last point repeats the first.
     circles = [np.c_[c, s, z], np.c_[c, z, s], np.c_[z, c, s]]
     as_dicts = [curvenet.Curve(p, closed=True) for p in circles]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         V0, F0, _ = curvenet.surface(curvenet.Network(curves=as_dicts), vertices=2000, preset="fast")
-        # Open polylines, mixed with a dict, through every entry point.
+        # Bare polylines (arrays, and lists of points) through every entry point.
         open_lines = [np.vstack([p, p[:1]]) for p in circles]
         V1, F1, _ = curvenet.surface(open_lines, vertices=2000, preset="fast")
         net, report, _ = curvenet.infer_normals([p.tolist() for p in open_lines])

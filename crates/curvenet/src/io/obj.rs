@@ -173,17 +173,26 @@ fn chain_soup(lines: Vec<(Option<String>, bool, LineIndices)>, v: &[DVec3], sour
     }
     let mut curves = Vec::new();
     for (name, boundary, edges) in groups {
-        let mut chained = chained_curves(v, None, &edges, name.as_deref(), boundary);
-        if name.is_none() {
-            // chained_curves keeps the chains' order and vertices: the same chains again, for
-            // their edges' lines.
-            for (c, (ids, closed)) in chained.iter_mut().zip(chain_edges(&edges)) {
-                let mut pairs: Vec<[usize; 2]> = ids.windows(2).map(|w| [w[0], w[1]]).collect();
-                if closed {
-                    pairs.push([ids[ids.len() - 1], ids[0]]);
-                }
-                let first = pairs.iter().filter_map(|&[a, b]| line_of.get(&[a.min(b), a.max(b)])).min();
-                c.name = first.map(|&l| crate::network::line_name(l));
+        let chains = chain_edges(&edges);
+        // An unnamed chain: the first line of its edges (closing edge included).
+        let first_line = |ids: &[usize], closed: bool| {
+            let closing = closed.then(|| [ids[ids.len() - 1], ids[0]]);
+            ids.windows(2)
+                .map(|w| [w[0], w[1]])
+                .chain(closing)
+                .filter_map(|[a, b]| line_of.get(&[a.min(b), a.max(b)]).copied())
+                .min()
+        };
+        let names: Vec<Option<String>> = match &name {
+            Some(_) => vec![None; chains.len()],
+            None => {
+                chains.iter().map(|(ids, closed)| first_line(ids, *closed).map(crate::network::line_name)).collect()
+            }
+        };
+        let mut chained = chained_curves(v, None, chains, name.as_deref(), boundary);
+        for (c, n) in chained.iter_mut().zip(names) {
+            if n.is_some() {
+                c.name = n;
             }
         }
         curves.extend(chained);
@@ -191,17 +200,16 @@ fn chain_soup(lines: Vec<(Option<String>, bool, LineIndices)>, v: &[DVec3], sour
     Ok(Network { curves, snap: None })
 }
 
-/// The curves of the undirected `edges` between `points` ([`chain_edges`]), with the points'
-/// `normals` where given; the `k`-th chain of a group named `name` is named `name.k` (the
-/// first `name`).
+/// The curves of `chains` (of [`chain_edges`]) between `points`, with the points' `normals`
+/// where given; the `k`-th chain of a group named `name` is named `name.k` (the first `name`).
 fn chained_curves(
     points: &[DVec3],
     normals: Option<&[DVec3]>,
-    edges: &[[usize; 2]],
+    chains: Vec<(Vec<usize>, bool)>,
     name: Option<&str>,
     boundary: bool,
 ) -> Vec<Curve> {
-    chain_edges(edges)
+    chains
         .into_iter()
         .enumerate()
         .map(|(k, (ids, closed))| Curve {
@@ -252,7 +260,7 @@ pub fn network_from_edges(points: &[DVec3], edges: &[[i64; 2]], normals: Option<
             ids.push([a, b]);
         }
     }
-    Ok(Network { curves: chained_curves(points, normals, &ids, None, false), snap: None })
+    Ok(Network { curves: chained_curves(points, normals, chain_edges(&ids), None, false), snap: None })
 }
 
 /// Maximal chains of the undirected `edges` (repeated edges counted once): vertex lists from

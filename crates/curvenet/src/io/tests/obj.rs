@@ -110,8 +110,14 @@ fn network_from_edges_is_the_edge_soup_of_an_obj() {
     let net = network_from_edges(&p, &edges, Some(&normals)).unwrap();
     assert_eq!(net.curves.len(), 3);
     assert_eq!(net.curves.len(), soup.curves.len());
+    let text: Vec<&str> = obj.lines().collect();
     for (a, b) in net.curves.iter().zip(&soup.curves) {
         assert_eq!((&a.points, a.closed, a.boundary), (&b.points, b.closed, b.boundary));
+        // The soup's curve is named after the first `l` line of its edges (the arrays' is not).
+        assert!(a.name.is_none());
+        let line: usize = b.name.as_deref().and_then(|n| n.strip_prefix("curve at line ")).unwrap().parse().unwrap();
+        let ids: Vec<usize> = text[line - 1].split(' ').skip(1).map(|i| i.parse::<usize>().unwrap() - 1).collect();
+        assert!(ids.iter().all(|&i| b.points.contains(&p[i])), "line {line}: {:?}", text[line - 1]);
         assert!(b.normals.is_empty());
         // Each normal is its point's.
         for (q, n) in a.points.iter().zip(&a.normals) {
