@@ -113,7 +113,9 @@ try {
   const badMessage = await page.textContent('#message');
   const errorCurve = await page.getAttribute('#message', 'data-error-curve');
   console.log(`error on curve ${errorCurve}: ${badMessage}`);
-  if (errorCurve !== '1' || !badMessage.includes('curve 1')) fail(`the error does not name curve 1: ${errorCurve} ${badMessage}`);
+  // A named curve is named by its name in messages, an unnamed one by its index.
+  const label = sphereNet.curves[1].name ? `curve "${sphereNet.curves[1].name}"` : 'curve 1';
+  if (errorCurve !== '1' || !badMessage.includes(label)) fail(`the error does not name curve 1 (${label}): ${errorCurve} ${badMessage}`);
   await page.screenshot({ path: path.join(out, 'error-curve.png') });
 
   // A click on a curve in the view selects it.

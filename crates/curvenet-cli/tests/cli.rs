@@ -131,7 +131,7 @@ fn invalid_values_name_curve_and_sample() {
         "n.json",
         br#"{"curves": [{"name": "rim", "points": [[0,0,0],[1,0,0]], "normals": [[0,0,1]]}]}"#,
         1,
-        &["curve 0 (\"rim\")", "2 points but 1 normals"],
+        &["curve \"rim\"", "2 points but 1 normals"],
     );
     expect_failure(
         "one-sample",
@@ -216,7 +216,10 @@ fn non_manifold_networks_name_the_node_or_segment() {
         "n.json",
         &json_of(&net),
         1,
-        &[&format!("curve {b}"), "open boundary curve must be closed or end on another curve"],
+        &[
+            &curvenet::network::curve_label(&net.curves, b),
+            "open boundary curve must be closed or end on another curve",
+        ],
     );
 
     // Issue 5: the fold is detected and the patch triangulated on a fallback domain.
@@ -231,7 +234,7 @@ fn non_manifold_networks_name_the_node_or_segment() {
         "n.json",
         &json_of(&net),
         1,
-        &["curve 0 (\"equator z=0\") and curve 1 (\"meridian x=0\") meet at", "points inward"],
+        &["curve \"equator z=0\" and curve \"meridian x=0\" meet at", "points inward"],
     );
 
     // A boundary tag on a curve with patches on both sides.
@@ -296,7 +299,7 @@ fn duplicate_samples_are_merged_with_a_warning() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(
         stderr(&o).contains(
-            "warning: curve 0 (\"equator z=0\"): 1 sample(s) repeated the previous one and were merged (sample 6)"
+            "warning: curve \"equator z=0\": 1 sample(s) repeated the previous one and were merged (sample 6)"
         ),
         "{}",
         stderr(&o)

@@ -229,7 +229,10 @@ fn bad_values_and_sizes_are_refused_at_the_door() {
     let o = bin().args(["surface", &alt, "-o", &x_ply]).output().unwrap();
     let msg = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{msg}");
-    assert!(msg.contains("curve 1") && msg.contains("sample") && msg.contains("turns by"), "{msg}");
+    assert!(
+        msg.contains("curve \"evil\\u{1b}[31m\\u{7}\"") && msg.contains("sample") && msg.contains("turns by"),
+        "{msg}"
+    );
     assert!(!o.stderr.iter().any(|&b| b == 0x1b || b == 0x07), "raw control characters: {msg}");
 
     // eval of a mesh with a NaN vertex, and of an empty mesh; a model without constraints.

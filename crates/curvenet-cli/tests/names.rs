@@ -7,7 +7,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 use std::process::Command;
 
-/// Per curve number in `text`: the labels it appears with (`curve 41`, `curve 41 ("rim")`).
+/// Per curve number in `text`: the labels it appears with (`curve 41`, or `curve 41 ("rim")` as
+/// messages once named curves; a named curve is now `curve "rim"`, without a number).
 fn labels(text: &str) -> BTreeMap<String, BTreeSet<String>> {
     let mut out: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     let mut from = 0;
@@ -51,6 +52,18 @@ fn one_number_names_one_curve_in_every_message_of_a_run() {
         let text = String::from_utf8_lossy(&o.stderr);
         for (n, names) in labels(&text) {
             assert!(names.len() == 1, "{}: curve {n} is named {names:?} in one run:\n{text}", f.display());
+        }
+        // Each name can be found in the input: `curve at line N` at an `l` statement,
+        // `curve "name"` in the file's text.
+        let input = std::fs::read_to_string(f).unwrap();
+        let lines: Vec<&str> = input.lines().collect();
+        for part in text.split("curve at line ").skip(1) {
+            let n: usize = part.chars().take_while(char::is_ascii_digit).collect::<String>().parse().unwrap();
+            assert!(lines.get(n - 1).is_some_and(|l| l.starts_with("l ")), "{}: line {n} is no polyline", f.display());
+        }
+        for part in text.split("curve \"").skip(1) {
+            let name = part.split('"').next().unwrap();
+            assert!(input.contains(name), "{}: curve \"{name}\" is not in the file", f.display());
         }
     }
     let _ = std::fs::remove_dir_all(&dir);

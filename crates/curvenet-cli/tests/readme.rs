@@ -101,4 +101,63 @@ fn every_surface_option_is_in_the_readme() {
     }
     assert!(seen >= 25, "{seen} options read from the help");
     assert!(missing.is_empty(), "not in the README: {missing:?}");
+    // And the other way: every option the table's first column names is one the help gives
+    // (a renamed or removed option does not linger in the README).
+    let mut stale = Vec::new();
+    for row in table.lines().filter(|l| l.starts_with("| `")) {
+        let first = row.split('|').nth(1).unwrap_or("");
+        for word in first.split(|c: char| c == '`' || c == ',' || c.is_whitespace()) {
+            let flag: String = word.chars().take_while(|c| *c == '-' || c.is_ascii_alphanumeric()).collect();
+            if flag.starts_with("--")
+                && !help.contains(&format!("{flag} "))
+                && !help.contains(&format!("{flag}\n"))
+                && !help.contains(&format!("{flag}["))
+            {
+                stale.push(flag);
+            }
+        }
+    }
+    assert!(stale.is_empty(), "in the README's table, not in `surface --help`: {stale:?}");
+}
+
+/// The numbers `d.de-x` of `text` (scientific notation, as the reports write them).
+fn scientific(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for word in text.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == '-')) {
+        let word = word.trim_matches(|c: char| c == '.' || c == '-');
+        if let Some((m, e)) = word.split_once('e') {
+            if m.contains('.') && m.parse::<f64>().is_ok() && e.parse::<i32>().is_ok() {
+                out.push(word.to_string());
+            }
+        }
+    }
+    out
+}
+
+/// Every figure of the README's "Measured" section in scientific notation is one of
+/// docs/accuracy.md's (the generated report) to the digits the README quotes (issue 33: the
+/// README's sections gave the soft constraints' figures two ways, neither the report's).
+#[test]
+fn the_readme_measured_figures_are_the_reports() {
+    let readme = std::fs::read_to_string(repo().join("README.md")).unwrap();
+    let start = readme.find("## Measured").unwrap();
+    let section = &readme[start..start + readme[start..].find("\n## Pictures").unwrap()];
+    let report = std::fs::read_to_string(repo().join("docs/accuracy.md")).unwrap();
+    let values: Vec<f64> = report
+        .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == '-'))
+        .filter_map(|w| w.trim_matches(|c: char| c == '.' || c == '-').parse::<f64>().ok())
+        .collect();
+    let quoted = scientific(section);
+    assert!(quoted.len() >= 15, "{quoted:?}");
+    let mut absent = Vec::new();
+    for q in &quoted {
+        let (m, e) = q.split_once('e').unwrap();
+        let decimals = m.split_once('.').map_or(0, |(_, d)| d.len()) as i32;
+        let half_unit = 0.5 * 10f64.powi(e.parse::<i32>().unwrap() - decimals);
+        let v: f64 = q.parse().unwrap();
+        if !values.iter().any(|a| (a - v).abs() <= half_unit * 1.0001) {
+            absent.push(q.clone());
+        }
+    }
+    assert!(absent.is_empty(), "README figures not in docs/accuracy.md: {absent:?}");
 }

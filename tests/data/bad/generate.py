@@ -123,11 +123,28 @@ def to_net(curves):
     return "\n".join(out) + "\n"
 
 
+def label(curves, i, fmt):
+    """How messages name curve `i` of `curves` written as `fmt`: by its name where no other curve
+    has it (`curve "rim"`), by its index beside a shared name (`curve 3 ("curve")`, an OBJ
+    group), by its index alone without a name (`curve 3`, the `.net` format)."""
+    names = [None if fmt == "net" else c["name"] for c in curves]
+    if fmt == "obj":
+        names = ["boundary" if c["boundary"] else (c["name"] or "curve").replace(" ", "_") for c in curves]
+    if names[i] is None:
+        return f"curve {i}"
+    if names.count(names[i]) > 1:
+        return f"curve {i} (\"{names[i]}\")"
+    return f"curve \"{names[i]}\""
+
+
 def network(name, curves, code, message, formats=("json", "obj", "net")):
-    """One invalid network in every format that can express it."""
+    """One invalid network in every format that can express it; `{c3}` in `message` stands for
+    curve 3's label in that format."""
     for fmt in formats:
         text = {"json": to_json, "obj": to_obj, "net": to_net}[fmt](curves)
-        put(f"{name}.{fmt}", text, code, message)
+        labels = {f"c{i}": label(curves, i, fmt) for i in range(len(curves))}
+        msg = [m.format(**labels) for m in message] if isinstance(message, list) else message.format(**labels)
+        put(f"{name}.{fmt}", text, code, msg)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -202,7 +219,7 @@ network("closed-two-samples", [curve([[0, 0, 0], [1, 0, 0]], [[0, 0, 1]] * 2, cl
 network("all-samples-coincide", [curve([[1, 2, 3]] * 5, [[0, 0, 1]] * 5)], 1, "coincide")
 network("near-duplicate-samples", [curve([[0, 0, 0], [1, 0, 0], [1 + 1e-14, 0, 0]], [[0, 0, 1]] * 3),
                                    curve([[0, 5, 0], [5e-15, 5, 0]], [[0, 0, 1]] * 2)], 1,
-        ["curve 1", "has 1 distinct sample"])
+        ["{c1}", "has 1 distinct sample"])
 network("huge-extent-overflow", [curve([[-1e308, 0, 0], [1e308, 0, 0], [0, 1e308, 0]], [[0, 0, 1]] * 3, closed=True)],
         1, "outside the supported range")
 
@@ -215,7 +232,7 @@ network("tiny-coordinates-1e-300", small, 1, "outside the supported range")
 zero = [dict(c) for c in sph]
 zero[1] = dict(zero[1], normals=[list(n) for n in zero[1]["normals"]])
 zero[1]["normals"][5] = [0, 0, 0]
-network("zero-normal", zero, 1, ["curve 1", "sample 5: normal", "cannot be normalised"])
+network("zero-normal", zero, 1, ["{c1}", "sample 5: normal", "cannot be normalised"])
 
 tiny = [dict(c) for c in sph]
 tiny[2] = dict(tiny[2], normals=[list(n) for n in tiny[2]["normals"]])
@@ -230,7 +247,7 @@ network("normals-flipped-on-one-curve", flip, 1, "points inward")
 tang = [dict(c) for c in sph]
 p = tang[0]["points"]
 tang[0] = dict(tang[0], normals=[[-q[1], q[0], 0.0] for q in p])
-network("normals-tangent-to-curve", tang, 1, ["curve 0", "sample 0: normal", "tangent to the curve"])
+network("normals-tangent-to-curve", tang, 1, ["{c0}", "sample 0: normal", "tangent to the curve"])
 
 # An extra copy of the equator (coincident curves) and a half equator lying on it (overlap).
 network("coincident-curves", sph + [dict(sph[0], name="equator again")], 1, "overlap")
@@ -246,7 +263,7 @@ for k in range(21):
     s = math.sin(t) * math.sqrt(0.5)
     dang.append([s, s, math.cos(t)])
 # Handled since open networks are supported (issue 5): trimmed with a warning naming the curve.
-network("dangling-curve", sph + [curve(dang, dang, name="whisker")], 0, ["curve 3", "left out of the surface"])
+network("dangling-curve", sph + [curve(dang, dang, name="whisker")], 0, ["{c3}", "left out of the surface"])
 
 # Three half-disk pages sharing a diameter: a segment used by three patches.
 book = [curve([[-1 + 2 * k / 32, 0, 0] for k in range(33)], [[0, 0, 1]] * 33, name="spine")]
@@ -264,7 +281,7 @@ for k in range(120):
     t = 2 * math.pi * k / 120
     eight.append([math.sin(t), math.sin(t) * math.cos(t), 0.0])
 network("self-intersecting-curve", [curve(eight, [[0, 0, 1]] * 120, closed=True, boundary=True, name="eight")],
-        1, ["4 boundary segment ends meet", "(curve 0", "not a 2-manifold"])
+        1, ["4 boundary segment ends meet", "({c0}", "not a 2-manifold"])
 
 # A boundary loop whose planar projection crosses itself (a limaçon lifted out of its plane).
 lim = []
@@ -279,7 +296,7 @@ network("self-crossing-projection", [curve(lim, [[0, 0, 1]] * 200, closed=True, 
 # A needle: a boundary loop 1e-4 as wide as it is long (its two sides closer than the snap).
 needle = [[math.cos(2 * math.pi * k / 100), 1e-4 * math.sin(2 * math.pi * k / 100), 0.0] for k in range(100)]
 network("needle-cycle", [curve(needle, [[0, 0, 1]] * 100, closed=True, boundary=True, name="needle")], 1,
-        "curve 0 (\"needle\") runs within the snapping tolerance", formats=("json",))
+        "curve \"needle\" runs within the snapping tolerance", formats=("json",))
 network("needle-cycle", [curve(needle, [[0, 0, 1]] * 100, closed=True, boundary=True)], 1,
         "curve 0 runs within the snapping tolerance", formats=("net",))
 
@@ -291,7 +308,7 @@ network("interior-curve-tagged-boundary", tagged, 1, "tagged as boundary but has
 
 # A single open curve: it bounds nothing.
 network("single-open-curve", [curve([[k / 10, 0, 0] for k in range(11)], [[0, 0, 1]] * 11, name="stick")], 1,
-        ["curve 0", "no curves of the network bound a patch"])
+        ["{c0}", "no curves of the network bound a patch"])
 
 with open(os.path.join(HERE, "expected.json"), "w") as f:
     json.dump(dict(sorted(expected.items())), f, indent=1)

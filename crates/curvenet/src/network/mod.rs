@@ -80,7 +80,12 @@ impl Curve {
     }
 }
 
-/// Human-readable name of curve `index` for messages: `curve 3 ("equator")`.
+/// Human-readable name of curve `index` for messages: `curve "equator"` for a curve the input
+/// names, `curve 3` for one it does not. A curve whose name no other curve has is shown by its
+/// name alone, without its index: the index shifts when curves before it are left out, merged
+/// or split, the name does not, so a run's messages name it one way and the name is the one in
+/// the input file. A name several curves share (an OBJ group of many polylines) keeps the index
+/// beside it: `curve 3 ("rim")`.
 /// Control characters and escape sequences in a name are shown escaped (`\u{1b}`), so that a
 /// file's text never drives the terminal a message is printed on. A curve named by its place in
 /// the input ([`position_name`]: `curve 42`, `curve 42 part 2`, given when curves are left out
@@ -94,7 +99,11 @@ pub fn curve_label(curves: &[Curve], index: usize) -> String {
                 .chars()
                 .map(|ch| if ch.is_control() { ch.escape_unicode().to_string() } else { ch.to_string() })
                 .collect();
-            format!("curve {index} (\"{shown}\")")
+            if curves.iter().filter(|c| c.name.as_deref() == Some(name)).nth(1).is_some() {
+                format!("curve {index} (\"{shown}\")")
+            } else {
+                format!("curve \"{shown}\"")
+            }
         }
         None => format!("curve {index}"),
     }

@@ -36,7 +36,12 @@ fn check(net: &Network, options: &Options) -> Result<()> {
 fn culprit(net: &Network, e: &Error) -> Option<usize> {
     let text = e.to_string();
     let named: Vec<usize> = (0..net.curves.len())
-        .filter(|&i| net.curves[i].name.as_ref().is_some_and(|n| text.contains(&format!("(\"{n}\")"))))
+        .filter(|&i| {
+            net.curves[i]
+                .name
+                .as_ref()
+                .is_some_and(|n| text.contains(&format!("curve \"{n}\"")) || text.contains(&format!("(\"{n}\")")))
+        })
         .collect();
     named.iter().copied().find(|&i| !net.curves[i].normals_right.is_empty()).or(named.last().copied())
 }
