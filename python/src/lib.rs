@@ -287,7 +287,7 @@ impl PyNetwork {
                 boundary,
             });
         }
-        Ok(PyNetwork { inner: curvenet::Network { curves: out, snap }, source: None })
+        Ok(PyNetwork { inner: curvenet::Network { curves: out, snap, cycles: None }, source: None })
     }
 
     /// Per curve, its crease normals `normals_right` (n,3), or `None` for a smooth curve.

@@ -610,3 +610,18 @@ def test_method_values_take_underscores():
     V1, F1, _ = curvenet.surface(net, method="normal-control", preset="fast", vertices=2000)
     V2, F2, _ = curvenet.surface(net, method="normal_control", preset="fast", vertices=2000)
     np.testing.assert_array_equal(V1, V2)
+
+
+def test_inferred_normals_carry_the_cycles_a_surface_uses():
+    """`infer_normals` returns the network with the cycles the surface run chose (issue 30):
+    surfacing it makes the patches of surfacing the sketch (`shield` stopped on overlapping
+    patches before, its file traced anew)."""
+    sketch = curvenet.read_network(str(ROOT / "data" / "sketches" / "shield.obj"))
+    net, report, _ = curvenet.infer_normals(sketch)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", curvenet.SurfacingWarning)
+        _, F1, direct = curvenet.surface(sketch, vertices=8000, consolidate="off")[:3]
+        _, F2, again = curvenet.surface(net, vertices=8000, consolidate="off")[:3]
+    assert report["chosen_cycles"] > 0
+    assert again["cycles"] == direct["cycles"]
+    assert len(F2) == len(F1)

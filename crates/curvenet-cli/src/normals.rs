@@ -44,6 +44,14 @@ pub fn run(a: &NormalsArgs) -> Result<(), Error> {
     for w in &inferred.warnings {
         eprintln!("warning: {w}");
     }
+    let json = curvenet::io::NetworkFormat::from_path(&a.output)? == curvenet::io::NetworkFormat::Json;
+    if inferred.network.cycles.is_some() && !json {
+        eprintln!(
+            "warning: the cycles chosen for the patches are kept in JSON only: a surface made from {} may find \
+             others (write .json to keep them)",
+            a.output.display()
+        );
+    }
     write_network(&a.output, &inferred.network)?;
     if !a.quiet {
         let r = &inferred.report;

@@ -193,7 +193,13 @@ fn non_manifold_networks_name_the_node_or_segment() {
             .collect();
         curves.push(curve(pts, vec![nn; n + 1], false, true));
     }
-    expect_failure("book", "n.json", &json_of(&Network { curves, snap: None }), 1, &["not a 2-manifold", "node"]);
+    expect_failure(
+        "book",
+        "n.json",
+        &json_of(&Network { curves, snap: None, cycles: None }),
+        1,
+        &["not a 2-manifold", "node"],
+    );
 
     // A boundary loop whose projection crosses itself (a limaçon lifted out of its plane).
     let pts: Vec<DVec3> = (0..200)
@@ -223,7 +229,7 @@ fn non_manifold_networks_name_the_node_or_segment() {
     );
 
     // Issue 5: the fold is detected and the patch triangulated on a fallback domain.
-    let net = Network { curves: vec![curve(pts, vec![DVec3::Z; 200], true, true)], snap: None };
+    let net = Network { curves: vec![curve(pts, vec![DVec3::Z; 200], true, true)], snap: None, cycles: None };
     expect_success_with_warnings("self-crossing", &json_of(&net), &["patch 0", "folds over", "fallback domain"]);
 
     // Normals of one curve pointing inward.

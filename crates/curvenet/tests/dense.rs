@@ -20,6 +20,7 @@ fn great_circles(n: usize) -> Network {
             circle(&|c, s| DVec3::new(s, 0.0, c)),
         ],
         snap: None,
+        cycles: None,
     }
 }
 

@@ -147,6 +147,7 @@ fn ellipsoid_tori_and_cone_without_normals_as_json_and_edge_soup() {
             closed(160, |u| DVec3::new(a * u.sin(), 0.0, c * u.cos()), |p| p / DVec3::new(a * a, b * b, c * c), false),
         ],
         snap: None,
+        cycles: None,
     };
     let torus = |big: f64, r: f64| {
         let normal = move |p: DVec3| p - DVec3::new(p.x, p.y, 0.0).normalize() * big;
@@ -164,12 +165,12 @@ fn ellipsoid_tori_and_cone_without_normals_as_json_and_edge_soup() {
         for rr in [big + r, big - r] {
             curves.push(closed(160, move |t| DVec3::new(rr * t.cos(), rr * t.sin(), 0.0), normal, false));
         }
-        Network { curves, snap: None }
+        Network { curves, snap: None, cycles: None }
     };
     // The cone z = 2 − ρ (45°) between ρ = 0.5 and 1.5: boundary circles, a middle circle and six
     // rulings.
     let cone_normal = |p: DVec3| DVec3::new(p.x, p.y, 0.0).normalize() + DVec3::Z;
-    let mut cone = Network { curves: Vec::new(), snap: None };
+    let mut cone = Network { curves: Vec::new(), snap: None, cycles: None };
     for rr in [0.5, 1.0, 1.5] {
         cone.curves.push(closed(
             160,

@@ -42,7 +42,7 @@ fn a_hole_reached_by_a_single_curve_is_covered_with_a_warning() {
         .collect();
     curves.push(polyline("hole", hole, true, true));
     curves.push(line("bridge", DVec3::new(1.5, 1.0, 0.0), DVec3::new(1.5, 1.3, 0.0), 6));
-    let net = Network { curves, snap: Some(1e-3) };
+    let net = Network { curves, snap: Some(1e-3), cycles: None };
     let s = surface(&net, &Options::default().with_vertices(3000)).unwrap();
     assert_eq!(s.stats.components, 1);
     let text: Vec<&str> = s.warnings.iter().map(|w| w.message.as_str()).collect();

@@ -195,6 +195,7 @@ fn a_lone_boundary_loop_bounds_a_flat_disk() {
             ..Default::default()
         }],
         snap: None,
+        cycles: None,
     };
     let (_, _, p) = topology(&net);
     assert!(matches!(p.as_slice(), [Patch::Disk(_)]));

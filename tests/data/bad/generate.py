@@ -310,6 +310,18 @@ network("interior-curve-tagged-boundary", tagged, 1, "tagged as boundary but has
 network("single-open-curve", [curve([[k / 10, 0, 0] for k in range(11)], [[0, 0, 1]] * 11, name="stick")], 1,
         ["{c0}", "no curves of the network bound a patch"])
 
+# Cycles given with the network (docs/design.md §15) that do not fit it.
+def with_cycles(curves, cycles):
+    doc = json.loads(to_json(curves))
+    doc["cycles"] = cycles
+    return json.dumps(doc)
+
+
+put("cycles-unknown-curve.json", with_cycles(sph, [[[7, 0, 12, True]]]), 1,
+    ["cycle 0 of the network's \"cycles\"", "curve 7 is not in the network"])
+put("cycles-empty-cycle.json", with_cycles(sph, [[]]), 1, ["cycle 0 ", "has no segments"])
+put("cycles-not-a-list.json", with_cycles(sph, {"a": 1}), 1, "cycles-not-a-list.json:")
+
 with open(os.path.join(HERE, "expected.json"), "w") as f:
     json.dump(dict(sorted(expected.items())), f, indent=1)
     f.write("\n")

@@ -15,13 +15,15 @@ use std::io::Write;
 
 /// The keys of a network object, and of a curve (the last three: `--method cauchy`'s
 /// attributes, read by `methods::andrews2011`).
-const NETWORK_KEYS: [&str; 2] = ["curves", "snap"];
+const NETWORK_KEYS: [&str; 3] = ["curves", "snap", "cycles"];
 const CURVE_KEYS: [&str; 9] =
     ["name", "closed", "boundary", "points", "normals", "normals_right", "kind", "sharpness", "stretch"];
 
 struct JsonNetwork {
     curves: Vec<JsonCurve>,
     snap: Option<f64>,
+    /// The patches' cycles, `[[curve, first, last, forward], …]` each (docs/design.md §15).
+    cycles: Option<Vec<crate::network::CycleKey>>,
     /// Unknown keys, with the curve they were met in (`None`: the network object).
     unknown: Vec<(Option<usize>, String)>,
 }
@@ -104,11 +106,12 @@ impl<'de> Deserialize<'de> for JsonNetwork {
                 f.write_str("a network object with a \"curves\" list")
             }
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> std::result::Result<JsonNetwork, A::Error> {
-                let (mut curves, mut snap, mut unknown) = (None::<Vec<JsonCurve>>, None, Vec::new());
+                let (mut curves, mut snap, mut cycles, mut unknown) = (None::<Vec<JsonCurve>>, None, None, Vec::new());
                 while let Some(key) = map.next_key::<String>()? {
                     match key.as_str() {
                         "curves" => curves = Some(map.next_value()?),
                         "snap" => snap = map.next_value()?,
+                        "cycles" => cycles = map.next_value()?,
                         _ => {
                             map.next_value::<IgnoredAny>()?;
                             unknown.push(key);
@@ -125,7 +128,7 @@ impl<'de> Deserialize<'de> for JsonNetwork {
                 for (i, c) in curves.iter_mut().enumerate() {
                     all.extend(std::mem::take(&mut c.unknown).into_iter().map(|k| (Some(i), k)));
                 }
-                Ok(JsonNetwork { curves, snap, unknown: all })
+                Ok(JsonNetwork { curves, snap, cycles, unknown: all })
             }
         }
         d.deserialize_map(V)
@@ -229,6 +232,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<(Network, Vec<Warning>)>
             })
             .collect(),
         snap: raw.snap,
+        cycles: raw.cycles,
     };
     Ok((network, warnings))
 }
@@ -269,7 +273,20 @@ pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {
         writeln!(w, "      ]")?;
         writeln!(w, "    }}{}", if ci + 1 < net.curves.len() { "," } else { "" })?;
     }
-    writeln!(w, "  ]")?;
+    match &net.cycles {
+        None => writeln!(w, "  ]")?,
+        Some(cycles) => {
+            // One cycle per line: `[curve, first sample, last sample, forward]` per segment.
+            writeln!(w, "  ],")?;
+            writeln!(w, "  \"cycles\": [")?;
+            for (k, cycle) in cycles.iter().enumerate() {
+                let segments: Vec<String> =
+                    cycle.iter().map(|(c, f, l, fw)| format!("[{c}, {f}, {l}, {fw}]")).collect();
+                writeln!(w, "    [{}]{}", segments.join(", "), if k + 1 < cycles.len() { "," } else { "" })?;
+            }
+            writeln!(w, "  ]")?;
+        }
+    }
     writeln!(w, "}}")
 }
 

@@ -259,7 +259,8 @@ pub fn parse_network_with_warnings(text: &str, format: NetworkFormat, source: &s
     }
 }
 
-/// Writes a curve network; the format comes from the extension. Atomic.
+/// Writes a curve network; the format comes from the extension. Atomic. The patches' cycles
+/// ([`Network::cycles`]) are written in JSON only.
 pub fn write_network(path: &Path, network: &Network) -> Result<()> {
     let format = NetworkFormat::from_path(path)?;
     if let Some(why) = unwritable(format, network) {

@@ -117,7 +117,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
     if let Some(t) = lines.next() {
         return Err(parse_error(source, t.line, 1, format!("unexpected content after the {k} curves")));
     }
-    Ok(Network { curves, snap: None })
+    Ok(Network { curves, snap: None, cycles: None })
 }
 
 pub(super) fn write(w: &mut dyn Write, net: &Network) -> std::io::Result<()> {

@@ -131,7 +131,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Network> {
             boundary: p.boundary,
         });
     }
-    Ok(Network { curves, snap: None })
+    Ok(Network { curves, snap: None, cycles: None })
 }
 
 /// An `l` line's samples: `(line, column, index)` as read (1-based, resolved).
@@ -197,7 +197,7 @@ fn chain_soup(lines: Vec<(Option<String>, bool, LineIndices)>, v: &[DVec3], sour
         }
         curves.extend(chained);
     }
-    Ok(Network { curves, snap: None })
+    Ok(Network { curves, snap: None, cycles: None })
 }
 
 /// The curves of `chains` (of [`chain_edges`]) between `points`, with the points' `normals`
@@ -260,7 +260,7 @@ pub fn network_from_edges(points: &[DVec3], edges: &[[i64; 2]], normals: Option<
             ids.push([a, b]);
         }
     }
-    Ok(Network { curves: chained_curves(points, normals, chain_edges(&ids), None, false), snap: None })
+    Ok(Network { curves: chained_curves(points, normals, chain_edges(&ids), None, false), snap: None, cycles: None })
 }
 
 /// Maximal chains of the undirected `edges` (repeated edges counted once): vertex lists from

@@ -189,7 +189,7 @@ pub fn fuzz_case(data: &[u8]) -> Option<(Network, crate::Options)> {
                     Curve { points, normals, closed: flags & 1 != 0, boundary: flags & 2 != 0, ..Default::default() }
                 })
                 .collect();
-            Network { curves, snap: None }
+            Network { curves, snap: None, cycles: None }
         }
         k => {
             let name = ["sphere", "cube", "saddle", "cylinder"][k as usize];

@@ -59,6 +59,7 @@ fn sphere() -> Network {
             })
             .collect(),
         snap: None,
+        cycles: None,
     }
 }
 
@@ -87,7 +88,7 @@ fn globe() -> Network {
             params(0.0, TAU, 128, true).map(|lon| at(lat, lon)),
         ));
     }
-    Network { curves, snap: None }
+    Network { curves, snap: None, cycles: None }
 }
 
 fn cube() -> Network {
@@ -109,7 +110,7 @@ fn cube() -> Network {
             curves.push(curve(&format!("edge {a}-{b}"), false, false, samples));
         }
     }
-    Network { curves, snap: None }
+    Network { curves, snap: None, cycles: None }
 }
 
 /// Torus point and outward normal at angles `(φ, θ)` (axis z).
@@ -138,7 +139,7 @@ pub fn torus(big_r: f64, r: f64) -> Network {
         params(0.0, TAU, 192, true).map(|t| torus_point(big_r, r, t, 0.0)),
     ));
     curves.push(curve("inner equator", true, false, params(0.0, TAU, 64, true).map(|t| torus_point(big_r, r, t, PI))));
-    Network { curves, snap: None }
+    Network { curves, snap: None, cycles: None }
 }
 
 /// Two boundary circles r = 1 at z = ±1 with normals tilted by `tilt` (radians) away from the
@@ -156,7 +157,7 @@ pub fn tube(tilt: f64) -> Network {
             }),
         )
     };
-    Network { curves: vec![ring(1.0, "top"), ring(-1.0, "bottom")], snap: None }
+    Network { curves: vec![ring(1.0, "top"), ring(-1.0, "bottom")], snap: None, cycles: None }
 }
 
 fn saddle() -> Network {
@@ -169,6 +170,7 @@ fn saddle() -> Network {
             curve("y axis", false, false, params(-1.0, 1.0, 64, false).map(move |y| sample(0.0, y))),
         ],
         snap: None,
+        cycles: None,
     }
 }
 
@@ -204,7 +206,7 @@ fn lens() -> Network {
         let name = format!("{} arc {}", if up > 0.0 { "upper" } else { "lower" }, if k == 0 { "xz" } else { "yz" });
         curves.push(curve(&name, false, false, arc));
     }
-    Network { curves, snap: None }
+    Network { curves, snap: None, cycles: None }
 }
 
 /// The closed cylinder r = 1, z ∈ [−1, 1]: two crease rims (90°), four side lines and two
@@ -241,7 +243,7 @@ fn can() -> Network {
             ));
         }
     }
-    Network { curves, snap: None }
+    Network { curves, snap: None, cycles: None }
 }
 
 /// The bundled example `name` (see [`EXAMPLES`]).

@@ -43,7 +43,19 @@ pub struct Network {
     /// Snapping tolerance (a distance): two curves closer than this meet at a node. `None`
     /// uses [`Network::DEFAULT_SNAP_RELATIVE`] times the bounding-box diagonal.
     pub snap: Option<f64>,
+    /// The cycles that bound the patches, chosen beforehand (written by `curvenet normals` from
+    /// the global cycle search, or edited by a person: docs/design.md §15). `None`: the
+    /// pipeline finds them. A network with cycles is taken as it is (no consolidation): the
+    /// cycles name its segments.
+    pub cycles: Option<Vec<CycleKey>>,
 }
+
+/// A patch's cycle by its segments' places on the curves: per segment `(curve, first sample,
+/// last sample, forward)` — the stretch of curve `curve` between the nodes at samples `first`
+/// and `last` (in sample order; across the end of a closed curve when `last < first`), run
+/// along in sample order (`forward`) or against it. Places survive a new node finding on the
+/// same curves, which numbers the segments anew.
+pub type CycleKey = Vec<(usize, usize, usize, bool)>;
 
 impl Curve {
     /// The curve carries its normals (an empty `normals` means unknown: they are inferred).
@@ -463,7 +475,7 @@ impl Network {
                 boundary: c.boundary,
             });
         }
-        Ok((Network { curves, snap: self.snap }, warnings))
+        Ok((Network { curves, snap: self.snap, cycles: self.cycles.clone() }, warnings))
     }
 }
 

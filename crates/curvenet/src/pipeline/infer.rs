@@ -62,7 +62,30 @@ pub fn needs_inference(network: &Network, options: &Options) -> bool {
 /// strokes, curves that bound no 2-manifold). A network whose orientation contradicts itself
 /// (a Möbius-like network) is a warning naming the segments, not an error.
 pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
-    let mut inferred = infer(network, options, true)?;
+    // The choice a surface run with `options` makes (`infer_and_prepare`: the search's cycles
+    // or the walk's, whichever is tried first and can be tessellated). The network returned
+    // carries the cycles chosen (its `cycles`; none for the walk's), so that a surface made
+    // from it has the same patches.
+    let mut quiet = |_: &str, _: f64, _: &str| {};
+    let prepared = match needs_inference(network, options) && network.cycles.is_none() {
+        true => infer_and_prepare(network, options, &mut quiet).ok().and_then(|(i, _)| i),
+        false => None,
+    };
+    let mut inferred = match prepared {
+        Some(i) => i,
+        // Where no surface can be made: the inference the run would try first.
+        None => {
+            let searched = infer(network, options, true);
+            let walked = infer(network, options, false);
+            match (searched, walked) {
+                (Ok(s), Ok(w)) if s.report.patched_share + 0.02 < w.report.patched_share => w,
+                (Ok(s), _) => s,
+                (Err(_), Ok(w)) => w,
+                (Err(e), Err(_)) => return Err(e),
+            }
+        }
+    };
+    inferred.network.cycles = inferred.cycles.clone().or(inferred.network.cycles.take());
     for w in &mut inferred.warnings {
         w.message = without_a_surface(&w.message);
     }
@@ -94,7 +117,21 @@ pub(crate) fn infer_and_prepare(
     progress: Progress<'_>,
 ) -> Result<(Option<Inferred>, Prepared)> {
     if !needs_inference(network, options) {
-        return Ok((None, prepare(network, options, None, progress)?));
+        return Ok((None, prepare(network, options, network.cycles.as_deref(), progress)?));
+    }
+    if let Some(given) = network.cycles.as_deref() {
+        // Cycles given with the network: its curves' normals are inferred around them (the
+        // search's, as without them), the patches are the given cycles.
+        let i = infer(network, options, true)?;
+        if i.network.curves.len() != network.curves.len() {
+            return Err(crate::Error::topology(format!(
+                "the network's \"cycles\" name its curves by index, but {} of its curves were left out as \
+                 duplicates while inferring normals: remove them from the file, or remove \"cycles\"",
+                network.curves.len() - i.network.curves.len()
+            )));
+        }
+        let p = prepare(&i.network, options, Some(given), progress).map_err(explain)?;
+        return Ok((Some(i), p));
     }
     let searched = infer(network, options, true);
     let walked = infer(network, options, false);

@@ -84,7 +84,8 @@ pub(crate) fn consolidate(
     options: &Options,
     progress: &mut dyn FnMut(&str, f64, &str),
 ) -> Result<Option<Consolidated>> {
-    if !options.consolidate.enabled {
+    // A network with its cycles is taken as it is: the cycles name its segments.
+    if !options.consolidate.enabled || network.cycles.is_some() {
         return Ok(None);
     }
     prepare::check_options(options)?;

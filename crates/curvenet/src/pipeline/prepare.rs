@@ -238,6 +238,11 @@ fn topology(
     let splines: Vec<CurveSpline> = timed(&mut timings.resample, || {
         g.curves.par_iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect()
     });
+    // Cycles the network came with are the user's: they must fit (the inference's own fall
+    // back to the walk where node finding on its network differs).
+    if let Some(given) = network.cycles.as_deref() {
+        crate::topology::cycles::check_keys(&g, given)?;
+    }
     let (patches, w) = timed(&mut timings.cycles, || match cycles {
         Some(keys) => match patches_from_keys(&mut g, &splines, keys)? {
             Some(found) => Ok(found),

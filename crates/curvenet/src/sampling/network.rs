@@ -66,7 +66,7 @@ pub(super) fn assemble(
             "the plane sections do not cross each other on the mesh: give more planes (`planes`) in at least two directions",
         ));
     }
-    let mut net = Network { curves, snap: Some(scales.snap) };
+    let mut net = Network { curves, snap: Some(scales.snap), cycles: None };
     if opts.noise > 0.0 {
         net = net.perturbed(opts.noise, opts.seed);
     }

@@ -98,7 +98,7 @@ pub fn as_drawn(network: &Network, drawn: &Drawn, seed: u64) -> Network {
             }
         }
     }
-    Network { curves, snap: None }
+    Network { curves, snap: None, cycles: None }
 }
 
 /// A curl back at one end of a stroke (`end` 0: its first sample, 1: its last).

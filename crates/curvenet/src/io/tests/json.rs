@@ -13,6 +13,7 @@ fn round_trip() {
             ..Default::default()
         }],
         snap: Some(1e-5),
+        cycles: None,
     };
     let mut buf = Vec::new();
     write(&mut buf, &net).unwrap();

@@ -35,6 +35,7 @@ fn round_trip() {
             ..Default::default()
         }],
         snap: None,
+        cycles: None,
     };
     let mut buf = Vec::new();
     write(&mut buf, &net).unwrap();
@@ -80,6 +81,7 @@ fn a_network_without_normals_round_trips_without_vn() {
             ..Default::default()
         }],
         snap: None,
+        cycles: None,
     };
     let mut buf = Vec::new();
     write(&mut buf, &net).unwrap();

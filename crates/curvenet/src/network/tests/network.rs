@@ -16,7 +16,7 @@ fn normals_are_normalised_and_duplicates_merged() {
     let mut c = line(3);
     c.points.insert(1, c.points[0]);
     c.normals.insert(1, DVec3::Z);
-    let (v, w) = Network { curves: vec![c], snap: None }.validated().unwrap();
+    let (v, w) = Network { curves: vec![c], snap: None, cycles: None }.validated().unwrap();
     assert_eq!(v.curves[0].points.len(), 3);
     assert_eq!(v.curves[0].normals[0], DVec3::Z);
     assert_eq!(w.len(), 1);
@@ -27,26 +27,26 @@ fn normals_are_normalised_and_duplicates_merged() {
 fn errors_name_curve_and_sample() {
     let mut c = line(3);
     c.normals[2] = DVec3::ZERO;
-    let e = Network { curves: vec![line(2), c], snap: None }.validated().unwrap_err();
+    let e = Network { curves: vec![line(2), c], snap: None, cycles: None }.validated().unwrap_err();
     assert!(e.to_string().contains("curve 1, sample 2"), "{e}");
     assert_eq!((e.at().curve, e.at().sample), (Some(1), Some(2)));
 
     let mut c = line(3);
     c.points[1].y = f64::NAN;
-    let e = Network { curves: vec![c], snap: None }.validated().unwrap_err();
+    let e = Network { curves: vec![c], snap: None, cycles: None }.validated().unwrap_err();
     assert!(e.to_string().contains("sample 1") && e.to_string().contains("non-finite"), "{e}");
     assert_eq!((e.at().curve, e.at().sample), (Some(0), Some(1)));
 
     let mut c = line(3);
     c.normals.pop();
-    let e = Network { curves: vec![c], snap: None }.validated().unwrap_err();
+    let e = Network { curves: vec![c], snap: None, cycles: None }.validated().unwrap_err();
     assert!(e.to_string().contains("3 points but 2 normals"), "{e}");
     assert_eq!((e.at().curve, e.at().sample), (Some(0), None));
 
-    let e = Network { curves: vec![line(1)], snap: None }.validated().unwrap_err();
+    let e = Network { curves: vec![line(1)], snap: None, cycles: None }.validated().unwrap_err();
     assert!(e.to_string().contains("at least 2"), "{e}");
 
-    let e = Network { curves: vec![], snap: None }.validated().unwrap_err();
+    let e = Network { curves: vec![], snap: None, cycles: None }.validated().unwrap_err();
     assert!(e.to_string().contains("no curves"), "{e}");
 }
 
@@ -75,11 +75,11 @@ fn noise_is_seeded_and_keeps_crossings() {
 fn normals_tangent_to_the_curve_are_rejected() {
     let mut c = line(4);
     c.normals[2] = DVec3::new(1.0, 0.02, 0.0);
-    let e = Network { curves: vec![c.clone()], snap: None }.validated().unwrap_err();
+    let e = Network { curves: vec![c.clone()], snap: None, cycles: None }.validated().unwrap_err();
     assert!(e.to_string().contains("curve 0, sample 2: normal") && e.to_string().contains("tangent"), "{e}");
     // 45° off the curve is a valid (if unusual) normal.
     c.normals[2] = DVec3::new(1.0, 0.0, 1.0);
-    assert!(Network { curves: vec![c], snap: None }.validated().is_ok());
+    assert!(Network { curves: vec![c], snap: None, cycles: None }.validated().is_ok());
 }
 
 #[test]
@@ -87,10 +87,10 @@ fn extents_outside_the_supported_range_are_rejected() {
     for (scale, shift) in [(1e70, 0.0), (1e-70, 0.0), (1.0, 1e10)] {
         let mut c = line(3);
         c.points.iter_mut().for_each(|p| *p = (*p + DVec3::splat(shift)) * scale);
-        let e = Network { curves: vec![c], snap: None }.validated().unwrap_err().to_string();
+        let e = Network { curves: vec![c], snap: None, cycles: None }.validated().unwrap_err().to_string();
         assert!(e.contains("supported range") || e.contains("translate it"), "{scale:e} {shift:e}: {e}");
     }
     let mut c = line(3);
     c.points.iter_mut().for_each(|p| *p = (*p + DVec3::splat(1e6)) * 1e-12);
-    assert!(Network { curves: vec![c], snap: None }.validated().is_ok());
+    assert!(Network { curves: vec![c], snap: None, cycles: None }.validated().is_ok());
 }

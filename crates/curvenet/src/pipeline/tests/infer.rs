@@ -77,6 +77,7 @@ fn a_single_open_stroke_is_refused() {
             ..Default::default()
         }],
         snap: None,
+        cycles: None,
     };
     let e = crate::surface(&net, &Options::default()).unwrap_err();
     assert!(matches!(e, Error::Topology { .. }), "{e}");
@@ -103,7 +104,7 @@ fn circle_of_arcs(k: usize) -> Network {
             .collect(),
         ..Default::default()
     };
-    Network { curves: (0..k).map(arc).collect(), snap: None }
+    Network { curves: (0..k).map(arc).collect(), snap: None, cycles: None }
 }
 
 #[test]

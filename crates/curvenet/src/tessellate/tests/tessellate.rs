@@ -8,7 +8,7 @@ use crate::topology::{find_nodes, find_patches};
 /// The topology stages of the pipeline on `curves`: the graph, its curve vertices at spacing
 /// `d` and its patches (for the tests of the tessellation stages).
 pub(super) fn prepared(curves: Vec<Curve>, d: f64) -> (Graph, Resampled, Vec<Patch>) {
-    let net = Network { curves, snap: None };
+    let net = Network { curves, snap: None, cycles: None };
     let (g, _) = find_nodes(&net, net.snap_tolerance()).unwrap();
     let splines: Vec<CurveSpline> =
         g.curves.iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();

@@ -208,7 +208,7 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
     };
     // The tolerance the strokes were consolidated with, also for node finding (the default
     // follows the mean sample spacing, which the changed strokes no longer have).
-    Ok(Consolidated { network: Network { curves, snap: Some(snap) }, report, warnings })
+    Ok(Consolidated { network: Network { curves, snap: Some(snap), cycles: None }, report, warnings })
 }
 
 fn curve_length(c: &Curve) -> f64 {

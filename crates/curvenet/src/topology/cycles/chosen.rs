@@ -19,6 +19,61 @@ pub fn segment_places(g: &Graph) -> HashMap<(usize, usize, usize), usize> {
     g.segments.iter().enumerate().map(|(i, s)| ((s.curve, s.first, s.last), i)).collect()
 }
 
+/// Checks cycles given with the network (`"cycles"` in its JSON, docs/design.md §15): each a
+/// closed chain of segments of `g` — a segment is the stretch of a curve between two nodes,
+/// written `[curve, first sample, last sample, forward]` — each segment in at most two cycles.
+/// The error names the cycle, the segment and what is wrong with it.
+pub fn check_keys(g: &Graph, keys: &[CycleKey]) -> Result<()> {
+    let at = segment_places(g);
+    let mut uses = vec![0u8; g.segments.len()];
+    let fail = |k: usize, what: String| {
+        Err(crate::Error::topology(format!(
+            "cycle {k} of the network's \"cycles\": {what} (a cycle lists the segments around a patch, \
+             [curve, first sample, last sample, forward] each, as `curvenet normals` writes them; remove \
+             \"cycles\" to let the pipeline find them)"
+        )))
+    };
+    for (k, key) in keys.iter().enumerate() {
+        if key.is_empty() {
+            return fail(k, "it has no segments".into());
+        }
+        let mut ends = Vec::with_capacity(key.len());
+        for &(c, f, l, forward) in key {
+            let Some(&s) = at.get(&(c, f, l)) else {
+                let what = match g.labels.get(c) {
+                    None => format!("curve {c} is not in the network ({} curves)", g.labels.len()),
+                    Some(name) => format!(
+                        "{name} has no segment from sample {f} to sample {l} (segments run between the nodes where \
+                         curves meet)"
+                    ),
+                };
+                return fail(k, what);
+            };
+            uses[s] += 1;
+            if uses[s] > 2 {
+                return fail(k, format!("the segment of {} from sample {f} to {l} is in a third cycle", g.labels[c]));
+            }
+            let seg = &g.segments[s];
+            ends.push(if forward { (seg.start, seg.end) } else { (seg.end, seg.start) });
+        }
+        for i in 0..ends.len() {
+            let next = ends[(i + 1) % ends.len()];
+            if ends[i].1 != next.0 {
+                let (c, f, l, _) = key[i];
+                return fail(
+                    k,
+                    format!(
+                        "it does not close: the segment of {} from sample {f} to {l} ends at node {}, the next \
+                         segment starts at node {}",
+                        g.labels[c], ends[i].1, next.0
+                    ),
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The patches of `g` bounded by the cycles `keys`, and the lone loops' tubes and disks;
 /// segments outside them are removed from `g`, each curve left out wholly named in a warning.
 /// `None` when some key is not a segment of `g` (the graph differs from the one the cycles

@@ -95,10 +95,9 @@ impl Choice {
     }
 }
 
-/// A chosen cycle by its half-edges' places on the curves, `(curve, first sample, last sample,
-/// forward)`: the same cycle in another graph of the same curves (node finding renumbers
-/// segments when it runs again, [`crate::topology::cycles::patches_from_keys`]).
-pub type CycleKey = Vec<(usize, usize, usize, bool)>;
+/// A chosen cycle by its half-edges' places on the curves (the same cycle in another graph of
+/// the same curves: [`crate::topology::cycles::patches_from_keys`]).
+pub use crate::network::CycleKey;
 
 impl Choice {
     /// The chosen cycles as [`CycleKey`]s on `g`.

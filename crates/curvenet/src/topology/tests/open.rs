@@ -27,7 +27,7 @@ fn a_dangling_curve_is_left_out_with_a_warning_naming_it() {
     };
     let mut curves: Vec<Curve> = (0..3).map(great).collect();
     curves.push(stick);
-    let net = Network { curves, snap: None };
+    let net = Network { curves, snap: None, cycles: None };
     let (mut g, _) = find_nodes(&net, net.snap_tolerance()).unwrap();
     assert_eq!((g.nodes.len(), g.segments.len()), (7, 13));
     let warnings = trim_dangling(&mut g).unwrap();

@@ -106,7 +106,7 @@ fn a_flat_grid_is_an_open_sheet() {
         curves.push(line(DVec3::new(x, 0.0, 0.0), DVec3::new(x, 3.0, 0.0), 30));
         curves.push(line(DVec3::new(0.0, x, 0.0), DVec3::new(3.0, x, 0.0), 30));
     }
-    let (g, splines) = unknown(&Network { curves, snap: None });
+    let (g, splines) = unknown(&Network { curves, snap: None, cycles: None });
     let choice = choose_cycles(&g, &splines);
     check_manifold_and_oriented(&g, &choice);
     assert_eq!(choice.patches.len(), 9);
@@ -127,7 +127,7 @@ fn a_box_keeps_its_right_angles() {
             }
         }
     }
-    let (g, splines) = unknown(&Network { curves, snap: None });
+    let (g, splines) = unknown(&Network { curves, snap: None, cycles: None });
     let choice = choose_cycles(&g, &splines);
     check_manifold_and_oriented(&g, &choice);
     assert_eq!(choice.patches.len(), 6);
@@ -154,7 +154,7 @@ fn a_shallow_dome_is_not_closed_by_its_rim() {
         ..Default::default()
     };
     let rim = closed(64, |a| DVec3::new(r * a.cos(), r * a.sin(), 0.0));
-    let (g, splines) = unknown(&Network { curves: vec![rim, arc(DVec3::X), arc(DVec3::Y)], snap: None });
+    let (g, splines) = unknown(&Network { curves: vec![rim, arc(DVec3::X), arc(DVec3::Y)], snap: None, cycles: None });
     let choice = choose_cycles(&g, &splines);
     check_manifold_and_oriented(&g, &choice);
     assert_eq!(choice.patches.len(), 4, "{:?}", choice.patches.iter().map(|p| p.cycle.len()).collect::<Vec<_>>());
@@ -170,7 +170,7 @@ fn petals_touching_at_one_node_are_patches_of_their_own() {
     // node twice.
     let petal_xz = closed(48, |a| DVec3::new(1.0 + a.cos(), 0.0, a.sin()));
     let petal_xy = closed(48, |a| DVec3::new(a.cos(), -1.0 + a.sin(), 0.0));
-    let (g, splines) = unknown(&Network { curves: vec![petal_xz, petal_xy], snap: None });
+    let (g, splines) = unknown(&Network { curves: vec![petal_xz, petal_xy], snap: None, cycles: None });
     assert_eq!(g.nodes.len(), 1);
     let choice = choose_cycles(&g, &splines);
     check_manifold_and_oriented(&g, &choice);

@@ -7,7 +7,7 @@ fn line(a: DVec3, b: DVec3, n: usize) -> Curve {
 }
 
 fn run(curves: Vec<Curve>, gap: f64) -> Consolidated {
-    let net = Network { curves, snap: None };
+    let net = Network { curves, snap: None, cycles: None };
     consolidate(&net, &ConsolidateOptions { enabled: true, gap: Some(gap) }, Some(1e-4)).unwrap()
 }
 
@@ -126,7 +126,7 @@ fn a_clean_network_comes_back_as_it_was() {
 fn off_changes_nothing() {
     let a = line(DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0), 11);
     let b = line(DVec3::new(0.5, 0.02, 0.0), DVec3::new(0.5, 1.0, 0.0), 11);
-    let net = Network { curves: vec![a, b], snap: None };
+    let net = Network { curves: vec![a, b], snap: None, cycles: None };
     let c = consolidate(&net, &ConsolidateOptions { enabled: false, gap: None }, None).unwrap();
     assert_eq!(c.network, net);
     assert!(!c.changed());

@@ -4,7 +4,7 @@ use crate::topology::find_nodes;
 
 /// The graph of `curves` (snapping tolerance from the network) and its splines.
 pub(super) fn graph(curves: Vec<Curve>) -> (Graph, Vec<CurveSpline>) {
-    let net = Network { curves, snap: None };
+    let net = Network { curves, snap: None, cycles: None };
     let (g, _) = find_nodes(&net, net.snap_tolerance()).unwrap();
     let splines = g.curves.iter().map(|c| CurveSpline::fit(&c.points, &c.normals, c.closed)).collect();
     (g, splines)

@@ -19,7 +19,7 @@ fn circle(axis: usize, n: usize, phase: f64) -> Curve {
 
 #[test]
 fn three_great_circles_with_shared_samples() {
-    let net = Network { curves: (0..3).map(|a| circle(a, 64, 0.0)).collect(), snap: None };
+    let net = Network { curves: (0..3).map(|a| circle(a, 64, 0.0)).collect(), snap: None, cycles: None };
     let (g, _) = find_nodes(&net, net.snap_tolerance()).unwrap();
     assert_eq!(g.nodes.len(), 6);
     assert_eq!(g.segments.len(), 12);
@@ -32,7 +32,11 @@ fn three_great_circles_with_shared_samples() {
 #[test]
 fn crossings_between_samples_are_found() {
     // Odd sample counts with a phase: no crossing is a sample.
-    let net = Network { curves: vec![circle(0, 61, 0.1), circle(1, 67, 0.05), circle(2, 71, 0.2)], snap: Some(5e-3) };
+    let net = Network {
+        curves: vec![circle(0, 61, 0.1), circle(1, 67, 0.05), circle(2, 71, 0.2)],
+        snap: Some(5e-3),
+        cycles: None,
+    };
     let (g, _) = find_nodes(&net, 5e-3).unwrap();
     assert_eq!(g.nodes.len(), 6, "{:?}", g.nodes);
     assert_eq!(g.segments.len(), 12);
@@ -48,7 +52,7 @@ fn crossings_between_samples_are_found() {
 fn flipped_normals_are_an_orientation_error() {
     let mut b = circle(1, 64, 0.0);
     b.normals.iter_mut().for_each(|n| *n = -*n);
-    let net = Network { curves: vec![circle(0, 64, 0.0), b], snap: None };
+    let net = Network { curves: vec![circle(0, 64, 0.0), b], snap: None, cycles: None };
     let Err(e) = find_nodes(&net, net.snap_tolerance()) else { panic!("accepted") };
     assert!(e.to_string().contains("curve 0 and curve 1 meet"), "{e}");
     assert!(e.to_string().contains("180°"), "{e}");
@@ -56,7 +60,7 @@ fn flipped_normals_are_an_orientation_error() {
 
 #[test]
 fn overlapping_curves_are_rejected() {
-    let net = Network { curves: vec![circle(0, 64, 0.0), circle(0, 64, 0.01)], snap: None };
+    let net = Network { curves: vec![circle(0, 64, 0.0), circle(0, 64, 0.01)], snap: None, cycles: None };
     match find_nodes(&net, net.snap_tolerance()) {
         Err(e) => assert!(e.to_string().contains("overlapping"), "{e}"),
         Ok((g, _)) => panic!("accepted with {} nodes", g.nodes.len()),
@@ -73,7 +77,7 @@ fn open_curve_ends_are_nodes() {
         boundary: false,
         ..Default::default()
     };
-    let net = Network { curves: vec![c], snap: None };
+    let net = Network { curves: vec![c], snap: None, cycles: None };
     let (g, _) = find_nodes(&net, net.snap_tolerance()).unwrap();
     assert_eq!(g.nodes.len(), 2);
     assert_eq!(g.segments, vec![Segment { curve: 0, first: 0, last: 2, start: 0, end: 1, boundary: false }]);
@@ -102,7 +106,7 @@ fn a_crossing_near_an_open_curve_end_keeps_the_order_of_the_nodes() {
         boundary: false,
         ..Default::default()
     };
-    let net = Network { curves: vec![stick, bar], snap: Some(0.01) };
+    let net = Network { curves: vec![stick, bar], snap: Some(0.01), cycles: None };
     let (g, _) = find_nodes(&net, 0.01).unwrap();
     // Along the stick, y decreases: the crossing (y = 0) comes before the end (y = -0.03).
     let y: Vec<f64> = g.curves[0].points.iter().map(|p| p.y).collect();
@@ -143,7 +147,7 @@ fn two_contacts_of_a_shallow_meeting_are_one_node() {
         boundary: false,
         ..Default::default()
     };
-    let net = Network { curves: vec![stick, bar], snap: Some(snap) };
+    let net = Network { curves: vec![stick, bar], snap: Some(snap), cycles: None };
     let (g, _) = find_nodes(&net, snap).unwrap();
     // Nodes on the bar other than its two ends: one.
     let inner: Vec<DVec3> =

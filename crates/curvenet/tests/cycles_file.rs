@@ -1,0 +1,106 @@
+//! Cycles given with a network (issue 30, item 5; docs/design.md §15): `curvenet normals`
+//! (Python `infer_normals`) writes the cycles the surface run chose, a surface made from that
+//! file has the same patches (before, it traced its own and stopped on overlapping patches for
+//! `shield` and `hat`), a person can leave a cycle open by deleting it, and cycles that do not
+//! fit the network are an error naming the cycle.
+
+use curvenet::io::{network_to_string, parse_network, read_network, NetworkFormat};
+use curvenet::network::examples::example;
+use curvenet::network::CycleKey;
+use curvenet::{infer_normals, surface, Network, Options};
+use std::collections::HashMap;
+
+fn sketch(name: &str) -> Network {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/sketches").join(format!("{name}.obj"));
+    read_network(&path).unwrap()
+}
+
+/// `net` written as JSON and read back.
+fn through_json(net: &Network) -> Network {
+    parse_network(&network_to_string(net, NetworkFormat::Json), NetworkFormat::Json, "cycles.json").unwrap()
+}
+
+/// Edges of `faces` in one face only.
+fn border_edges(faces: &[[u32; 3]]) -> usize {
+    let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+    for f in faces {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            *count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    count.values().filter(|&&n| n == 1).count()
+}
+
+#[test]
+fn inferred_normals_carry_the_cycles_the_sketchs_surface_uses() {
+    // `infer_normals` takes the network as it is (`curvenet consolidate --normals` consolidates
+    // first): the direct run without consolidation is the one to compare with.
+    let mut options = Options::default().with_vertices(8000);
+    options.consolidate.enabled = false;
+    let mut with_cycles = 0;
+    for name in ["computer-mouse", "hat", "shield", "teapot", "vacuum"] {
+        let net = sketch(name);
+        let direct = surface(&net, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let inferred = infer_normals(&net, &options).unwrap();
+        assert_eq!(inferred.network.cycles, inferred.cycles, "{name}");
+        with_cycles += usize::from(inferred.cycles.is_some());
+        let back = through_json(&inferred.network);
+        assert_eq!(back.cycles, inferred.network.cycles, "{name}: the cycles through JSON");
+        let again = surface(&back, &options).unwrap_or_else(|e| panic!("{name}, its normals and cycles: {e}"));
+        eprintln!(
+            "{name}: {} patches, {} vertices; from the file: {} patches, {} vertices",
+            direct.stats.cycles, direct.stats.vertices, again.stats.cycles, again.stats.vertices
+        );
+        assert_eq!(again.stats.cycles, direct.stats.cycles, "{name}: patches");
+        assert_eq!(border_edges(&again.mesh.faces), border_edges(&direct.mesh.faces), "{name}: border edges");
+    }
+    assert!(with_cycles >= 3, "{with_cycles} of 5 sketches carry cycles");
+}
+
+/// The sphere without normals, its normals and cycles inferred.
+fn sphere_with_cycles() -> Network {
+    let inferred = infer_normals(&example("sphere").unwrap().without_normals(), &Options::default()).unwrap();
+    let net = inferred.network;
+    assert_eq!(net.cycles.as_ref().map(Vec::len), Some(8), "the sphere's 8 octants");
+    net
+}
+
+#[test]
+fn a_cycle_deleted_from_the_file_is_left_open() {
+    let options = Options::default().with_vertices(4000);
+    let mut net = sphere_with_cycles();
+    let closed = surface(&net, &options).unwrap();
+    assert_eq!(border_edges(&closed.mesh.faces), 0);
+    net.cycles.as_mut().unwrap().pop();
+    let open = surface(&through_json(&net), &options).unwrap();
+    assert_eq!(open.stats.cycles, 7);
+    // One octant open: its border, three quarter circles, is the mesh's border.
+    let border = border_edges(&open.mesh.faces);
+    let expected = 1.5 * std::f64::consts::PI / open.stats.spacing;
+    assert!((border as f64 - expected).abs() < 0.2 * expected, "{border} border edges, about {expected:.0} expected");
+}
+
+#[test]
+fn cycles_that_do_not_fit_the_network_are_errors_naming_the_cycle() {
+    let options = Options::default().with_vertices(2000);
+    let net = sphere_with_cycles();
+    let cycles = net.cycles.clone().unwrap();
+    let with = |edit: &dyn Fn(&mut Vec<CycleKey>)| {
+        let mut n = net.clone();
+        edit(n.cycles.as_mut().unwrap());
+        surface(&n, &options).map(|_| ()).unwrap_err().to_string()
+    };
+    let e = with(&|c| c[2][0].0 = 7);
+    assert!(e.contains("cycle 2 of the network's \"cycles\"") && e.contains("curve 7 is not in the network"), "{e}");
+    let e = with(&|c| c[1][0].2 += 1);
+    assert!(e.contains("cycle 1 ") && e.contains("has no segment from sample"), "{e}");
+    let e = with(&|c| {
+        c[3].pop();
+    });
+    assert!(e.contains("cycle 3 ") && e.contains("does not close"), "{e}");
+    let e = with(&|c| c.push(cycles[0].clone()));
+    assert!(e.contains("cycle 8 ") && e.contains("in a third cycle"), "{e}");
+    let e = with(&|c| c.push(Vec::new()));
+    assert!(e.contains("cycle 8 ") && e.contains("has no segments"), "{e}");
+}
