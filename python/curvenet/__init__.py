@@ -41,6 +41,7 @@ from ._curvenet import (
 __all__ = [
     "consolidate",
     "Curve",
+    "cycles",
     "Error",
     "InputError",
     "Network",
@@ -403,6 +404,22 @@ def consolidate(network, *, gap=None, snap=None):
     for w in warnings:
         _warnings.warn(w, stacklevel=2)
     return net, _json.loads(report), warnings
+
+
+def cycles(network, *, consolidate=None, gap=None, snap=None):
+    """The network a :func:`surface` run uses — consolidated, normals inferred — with the
+    cycles of its patches in ``network.cycles`` (one list per patch, in patch order, of
+    ``(curve, first sample, last sample, forward)`` segments; docs/design.md §15), as
+    ``curvenet cycles`` writes it. Surfaced, it gives the run's mesh; remove a cycle
+    (``net.cycles = net.cycles[:k] + net.cycles[k + 1:]``) to leave that patch open. Returns
+    ``(network, warnings)``.
+    """
+    given = {"consolidate": consolidate, "gap": gap, "snap": snap}
+    net, warnings = _curvenet._cycles(_as_network(network), _options("default", given))
+    warnings = [SurfacingWarning(*w) for w in warnings]
+    for w in warnings:
+        _warnings.warn(w, stacklevel=2)
+    return net, warnings
 
 
 class Surfacer:

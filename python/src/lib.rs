@@ -315,6 +315,19 @@ impl PyNetwork {
         self.inner.snap
     }
 
+    /// The patches' cycles given with the network (`curvenet.cycles`, docs/design.md §15): per
+    /// patch a list of `(curve, first sample, last sample, forward)` segments; `None`: found
+    /// by the run. Settable (a cycle removed leaves its patch open).
+    #[getter]
+    fn cycles(&self) -> Option<Vec<curvenet::network::CycleKey>> {
+        self.inner.cycles.clone()
+    }
+
+    #[setter]
+    fn set_cycles(&mut self, cycles: Option<Vec<curvenet::network::CycleKey>>) {
+        self.inner.cycles = cycles;
+    }
+
     /// Writes the network (`.json`, `.net`, `.obj`, as the CLI).
     fn write(&self, path: &str) -> PyResult<()> {
         curvenet::io::write_network(Path::new(path), &self.inner).map_err(err)
@@ -547,6 +560,15 @@ fn _infer_normals(
     ))
 }
 
+/// The network a surface run uses, with its patches' cycles (`curvenet::network_with_cycles`):
+/// `(network, warnings)`.
+#[pyfunction]
+fn _cycles(py: Python<'_>, network: &PyNetwork, options: &PyOptions) -> PyResult<(PyNetwork, Vec<WarningTuple>)> {
+    let (net, opts) = (&network.inner, &options.inner);
+    let (out, warnings) = py.detach(|| curvenet::network_with_cycles(net, opts)).map_err(err)?;
+    Ok((PyNetwork { inner: out, source: network.source.clone() }, warning_tuples(&warnings)))
+}
+
 /// The warnings of a stage as Python takes them.
 fn warning_tuples(warnings: &[curvenet::Warning]) -> Vec<WarningTuple> {
     warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect()
@@ -741,6 +763,7 @@ fn _curvenet(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<_FolderLock>()?;
     m.add_function(wrap_pyfunction!(_infer_normals, m)?)?;
     m.add_function(wrap_pyfunction!(_consolidate, m)?)?;
+    m.add_function(wrap_pyfunction!(_cycles, m)?)?;
     m.add_function(wrap_pyfunction!(_harmonic, m)?)?;
     m.add_function(wrap_pyfunction!(_eval, m)?)?;
     Ok(())

@@ -625,3 +625,24 @@ def test_inferred_normals_carry_the_cycles_a_surface_uses():
     assert report["chosen_cycles"] > 0
     assert again["cycles"] == direct["cycles"]
     assert len(F2) == len(F1)
+
+
+def test_cycles_returns_the_runs_network_with_its_cycles_to_edit():
+    """`curvenet.cycles` (as `curvenet cycles`): surfaced, the network gives the run's mesh;
+    a cycle removed from `network.cycles` leaves that patch open."""
+    sphere = curvenet.example("sphere")
+    net, _ = curvenet.cycles(sphere)
+    assert len(net.cycles) == 8, "the sphere's octants"
+    assert all(len(seg) == 4 and isinstance(seg[3], bool) for cycle in net.cycles for seg in cycle)
+    _, F_run, _ = curvenet.surface(sphere, vertices=4000)[:3]
+    _, F_file, info = curvenet.surface(net, vertices=4000)[:3]
+    assert len(F_file) == len(F_run) and info["cycles"] == 8
+    net.cycles = net.cycles[:-1]
+    _, F_open, info = curvenet.surface(net, vertices=4000)[:3]
+    assert info["cycles"] == 7 and len(F_open) < len(F_run)
+    edges, counts = np.unique(np.sort(np.concatenate([F_open[:, [0, 1]], F_open[:, [1, 2]], F_open[:, [2, 0]]]), axis=1),
+                              axis=0, return_counts=True)
+    assert (counts == 1).sum() > 0, "the octant left open has a border"
+    net.cycles = [[(7, 0, 12, True)]]
+    with pytest.raises(curvenet.TopologyError, match="curve 7 is not in the network"):
+        curvenet.surface(net, vertices=4000)

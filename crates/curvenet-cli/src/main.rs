@@ -11,6 +11,7 @@ macro_rules! out {
 mod batch;
 mod bench;
 mod consolidate;
+mod cycles;
 mod demo;
 mod eval;
 mod example;
@@ -94,6 +95,9 @@ enum Command {
     /// Consolidate the raw strokes of a sketch (gaps closed, overdraw merged, hooks and stubs
     /// trimmed: the first stage of `surface`) and write the network, to look at or edit.
     Consolidate(consolidate::ConsolidateArgs),
+    /// Write the network a surface run uses (consolidated, normals inferred) with the cycles of
+    /// its patches, one line per patch: delete a line to leave that patch open, then surface it.
+    Cycles(cycles::CyclesArgs),
     /// Surface the bundled sphere network and report where the result went and how accurate it is.
     Demo(demo::DemoArgs),
     /// Measure a mesh against a ground truth: distances, normal angles, N* deviation ([CG] §4.3).
@@ -168,6 +172,7 @@ fn main() -> ExitCode {
         Command::Demo(a) => quietly!(a, demo::run),
         Command::Normals(a) => quietly!(a, normals::run),
         Command::Consolidate(a) => quietly!(a, consolidate::run),
+        Command::Cycles(a) => quietly!(a, cycles::run),
         Command::Eval(a) => eval::run(&a),
         Command::Sample(a) => quietly!(a, sample::run),
         Command::Study(a) => study::run(&a),

@@ -635,3 +635,44 @@ fn raw_strokes_are_consolidated_and_written_and_off_turns_it_off() {
     let o = run(&["surface", raw, "-o", ply.to_str().unwrap(), "-q", "--consolidate", "off"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
 }
+
+/// `curvenet cycles` writes the network with one line per patch's cycle; a line deleted leaves
+/// that patch open when the file is surfaced; an output other than JSON is refused before
+/// anything runs.
+#[test]
+fn cycles_writes_one_line_per_patch_to_edit() {
+    let dir = scratch("cycles");
+    let (net, json) = (dir.join("sphere.json"), dir.join("cycles.json"));
+    assert!(run(&["example", "sphere", "-o", net.to_str().unwrap()]).status.success());
+    let o = run(&["cycles", net.to_str().unwrap(), "-o", json.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("8 cycles"), "{}", String::from_utf8_lossy(&o.stdout));
+    let text = std::fs::read_to_string(&json).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let at = lines.iter().position(|l| l.trim() == "\"cycles\": [").unwrap();
+    assert_eq!(lines[at + 9].trim(), "]", "one line per cycle");
+    // Delete the last cycle's line (and the comma before it).
+    let mut edited: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+    edited.remove(at + 8);
+    edited[at + 7] = edited[at + 7].trim_end_matches(',').to_string();
+    std::fs::write(&json, edited.join("\n")).unwrap();
+    let (ply, stats) = (dir.join("open.ply"), dir.join("stats.json"));
+    let o = run(&[
+        "surface",
+        json.to_str().unwrap(),
+        "-o",
+        ply.to_str().unwrap(),
+        "--vertices",
+        "3000",
+        "--stats",
+        stats.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(s["cycles"], 7);
+    let obj = dir.join("cycles.obj");
+    let o = run(&["cycles", net.to_str().unwrap(), "-o", obj.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("JSON only") && !obj.exists(), "{}", stderr(&o));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -7,7 +7,7 @@
 use curvenet::io::{network_to_string, parse_network, read_network, NetworkFormat};
 use curvenet::network::examples::example;
 use curvenet::network::CycleKey;
-use curvenet::{infer_normals, surface, Network, Options};
+use curvenet::{infer_normals, network_with_cycles, surface, Network, Options};
 use std::collections::HashMap;
 
 fn sketch(name: &str) -> Network {
@@ -103,4 +103,33 @@ fn cycles_that_do_not_fit_the_network_are_errors_naming_the_cycle() {
     assert!(e.contains("cycle 8 ") && e.contains("in a third cycle"), "{e}");
     let e = with(&|c| c.push(Vec::new()));
     assert!(e.contains("cycle 8 ") && e.contains("has no segments"), "{e}");
+}
+
+/// `curvenet cycles` (`network_with_cycles`): the network a default run uses, with every
+/// patch's cycle; surfaced, it gives the run's mesh — on sketches (consolidated, normals and
+/// cycles inferred), on a network with normals (the walk's cycles) and on a tube (two lone
+/// boundary loops, no cycle to write: found again).
+#[test]
+fn the_network_with_its_cycles_surfaces_as_the_run_did() {
+    let options = Options::default().with_vertices(6000);
+    for (name, net) in [
+        ("shield", sketch("shield")),
+        ("hat", sketch("hat")),
+        ("sphere", example("sphere").unwrap()),
+        ("cylinder", example("cylinder").unwrap()),
+    ] {
+        let direct = surface(&net, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let (with, _) = network_with_cycles(&net, &options).unwrap();
+        let cycles = with.cycles.as_ref().unwrap().len();
+        let again = surface(&through_json(&with), &options).unwrap_or_else(|e| panic!("{name} with its cycles: {e}"));
+        eprintln!("{name}: {cycles} cycles, {} patches, {} faces", again.stats.cycles, again.mesh.faces.len());
+        assert_eq!(again.stats.cycles, direct.stats.cycles, "{name}");
+        assert_eq!(again.mesh.faces.len(), direct.mesh.faces.len(), "{name}");
+        let expected = match name {
+            "sphere" => Some(8),
+            "cylinder" => Some(0),
+            _ => None,
+        };
+        assert!(expected.is_none_or(|e| e == cycles), "{name}: {cycles} cycles");
+    }
 }

@@ -160,7 +160,7 @@ pub(crate) fn infer_and_prepare(
                     let (this, other) = if search_first {
                         ("the rotation walk on the inferred normals", "chosen over the whole network")
                     } else {
-                        ("chosen over the whole network", "of the rotation walk on the inferred normals")
+                        ("the cycle choice over the whole network", "of the rotation walk on the inferred normals")
                     };
                     i.warnings.push(Warning::new(format!(
                         "the patches {other} could not be surfaced ({e}); they were found by {this} instead: check \

@@ -15,6 +15,7 @@
 
 pub mod budget;
 pub mod coverage;
+pub mod cycles;
 pub mod files;
 pub mod infer;
 mod levels;
@@ -24,6 +25,7 @@ pub mod solve;
 pub mod stats;
 pub mod surfacer;
 
+pub use cycles::network_with_cycles;
 pub use infer::{infer_normals, Inferred};
 pub use options::{InferNormals, MeshOptions, OptionSpec, Options, Patching, Preset, OPTIONS};
 pub use stats::{InferredNormals, Stats, Surface, Timings};

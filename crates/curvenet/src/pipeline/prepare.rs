@@ -219,7 +219,7 @@ pub(super) fn check_options(options: &Options) -> Result<()> {
 
 /// Validation, nodes and segments (\[CG\] §3.1), splines (the tangents at nodes) and cycles
 /// (\[CG\] §3.2).
-fn topology(
+pub(super) fn topology(
     network: &Network,
     mesh: &MeshOptions,
     cycles: Option<&[CycleKey]>,

@@ -74,6 +74,29 @@ pub fn check_keys(g: &Graph, keys: &[CycleKey]) -> Result<()> {
     Ok(())
 }
 
+/// The cycles of `patches` as [`CycleKey`]s on `g`, in patch order: the disks, except those
+/// made of lone boundary loops (parts of the network with boundary curves only), which
+/// [`patches_from_keys`] finds again by itself, as it finds the tubes between them.
+pub fn keys_of(g: &Graph, patches: &[Patch]) -> Vec<CycleKey> {
+    let parts = Parts::new(g);
+    let lone = |s: usize| !parts.has_interior[parts.seg_root[s]] && g.segments[s].boundary;
+    patches
+        .iter()
+        .filter_map(|p| match p {
+            Patch::Disk(cycle) if !cycle.iter().all(|h| lone(h.segment)) => Some(
+                cycle
+                    .iter()
+                    .map(|h| {
+                        let s = &g.segments[h.segment];
+                        (s.curve, s.first, s.last, h.forward)
+                    })
+                    .collect(),
+            ),
+            _ => None,
+        })
+        .collect()
+}
+
 /// The patches of `g` bounded by the cycles `keys`, and the lone loops' tubes and disks;
 /// segments outside them are removed from `g`, each curve left out wholly named in a warning.
 /// `None` when some key is not a segment of `g` (the graph differs from the one the cycles

@@ -1,0 +1,43 @@
+//! The network a surface run uses, with the cycles of its patches written into it
+//! (`curvenet cycles`, Python `curvenet.cycles`; docs/design.md §15): consolidated, its missing
+//! normals inferred, and `cycles` listing every patch's cycle in patch order. A
+//! surface made from it has the run's patches; a person deletes a cycle to leave its patch
+//! open, or adds one.
+
+use super::options::Options;
+use super::stats::Timings;
+use crate::error::{Result, Warning};
+use crate::network::Network;
+use crate::topology::cycles::keys_of;
+
+/// `network` as a surface run with `options` would surface it, with its patches' cycles in
+/// [`Network::cycles`], and the warnings of the stages run (consolidation, inference, node
+/// finding, cycles). A network that has cycles keeps them (checked against it).
+pub fn network_with_cycles(network: &Network, options: &Options) -> Result<(Network, Vec<Warning>)> {
+    let mut quiet = |_: &str, _: f64, _: &str| {};
+    let mut warnings = Vec::new();
+    let consolidated = super::consolidate(network, options, &mut quiet)?;
+    let net = match consolidated {
+        Some(c) if c.changed() => {
+            warnings.extend(c.warnings);
+            c.network
+        }
+        _ => network.clone(),
+    };
+    let net = if super::infer::needs_inference(&net, options) {
+        let i = super::infer_normals(&net, options)?;
+        // Curves that bound no patch: the node finding below says so again, in a surface's words.
+        warnings.extend(i.warnings.into_iter().filter(|w| !w.message.contains("would be left out of a surface")));
+        i.network
+    } else {
+        net
+    };
+    let topo =
+        super::prepare::topology(&net, &options.mesh, net.cycles.as_deref(), &mut Timings::default(), &mut quiet)?;
+    warnings.extend(topo.warnings);
+    // The network as the run had it, not validated again: a surface made from it validates it
+    // as the run did (the same graph, so the keys fit) and gives the run's mesh to the bit.
+    let mut out = net;
+    out.cycles = Some(keys_of(&topo.g, &topo.patches));
+    Ok((out, warnings))
+}
