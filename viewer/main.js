@@ -53,7 +53,7 @@ async function loadWasm() {
 const FORMATS = { json: 0, obj: 1, net: 2 };
 
 // ---- State ----
-const state = { name: 'sphere', format: 0, base: '', result: null, fitted: false, curves: null, errorCurve: -1 };
+const state = { name: 'sphere', format: 0, base: '', result: null, fitted: false, curves: null, errorCurve: -1, original: null };
 
 // ---- three.js ----
 const view = $('view');
@@ -275,6 +275,7 @@ async function solve() {
     const stats = $('stats');
     stats.dataset.vertices = String(result.vertices);
     stats.dataset.faces = String(result.faceCount);
+    stats.dataset.patches = String(result.patches);
     stats.textContent = `${result.vertices} vertices (${result.curveVertices} on curves), ${result.faceCount} faces, ${result.patches} patches, ${ms.toFixed(0)} ms`;
     if (result.warnings) $('message').textContent = 'warning: ' + result.warnings;
   } catch (e) {
@@ -289,15 +290,22 @@ async function solve() {
   }
 }
 
-async function setNetwork(name, body, format) {
-  state.name = name; state.base = body; state.format = format; state.fitted = false;
-  state.result = null; state.errorCurve = -1;
+/** Fills the curve selector with the curves of the network `body`; their number. */
+async function listCurves(body, format) {
   const sel = $('curve');
   sel.innerHTML = '';
-  // A network that does not parse gets no curve list; the solve reports the error with its
-  // line and column.
   const count = await util.call('curveCount', body, format);
   for (let i = 0; i < count; i++) sel.add(new Option(`curve ${i}`, String(i)));
+  return count;
+}
+
+async function setNetwork(name, body, format) {
+  state.name = name; state.base = body; state.format = format; state.fitted = false;
+  state.original = null; $('fill-all').disabled = true;
+  state.result = null; state.errorCurve = -1;
+  // A network that does not parse gets no curve list; the solve reports the error with its
+  // line and column.
+  const count = await listCurves(body, format);
   $('angle').value = 0;
   updateLabels();
   // The curves at once, the surface when it is solved.
@@ -370,11 +378,48 @@ function selectCurve(k) {
   }
   highlight();
 }
+// ---- Leaving a patch open ----
+/** The patch of the surface under the pixel (x, y), or -1. */
+function patchAt(x, y) {
+  if (!state.result || !mesh.visible) return -1;
+  const rect = renderer.domElement.getBoundingClientRect();
+  const ndc = new THREE.Vector2(2 * (x - rect.left) / rect.width - 1, 1 - 2 * (y - rect.top) / rect.height);
+  raycaster.setFromCamera(ndc, camera);
+  const hit = raycaster.intersectObject(mesh, false)[0];
+  return hit ? state.result.facePatch[hit.faceIndex] ?? -1 : -1;
+}
+/** The network with patch `k` left open (its cycle removed, by the library), then solved. */
+async function openPatch(k) {
+  if (!(k >= 0)) return;
+  try {
+    const vertices = Math.round(10 ** +$('vertices').value);
+    const json = await util.call('openPatch', state.base, state.format, k, +$('method').value, vertices, +$('quality').value);
+    if (state.original === null) state.original = { body: state.base, format: state.format };
+    state.base = json; state.format = 0;
+    $('fill-all').disabled = false;
+    // Consolidation may have joined or merged curves: the selector lists the network's own.
+    await listCurves(json, 0);
+    $('angle').value = 0; updateLabels();
+    solve();
+  } catch (e) {
+    $('message').textContent = e.message;
+  }
+}
+$('fill-all').addEventListener('click', () => {
+  if (state.original === null) return;
+  state.base = state.original.body; state.format = state.original.format;
+  state.original = null; $('fill-all').disabled = true;
+  listCurves(state.base, state.format).then(() => { $('angle').value = 0; updateLabels(); solve(); });
+});
+
 let downAt = null;
 renderer.domElement.addEventListener('pointerdown', (e) => { downAt = [e.clientX, e.clientY]; });
 renderer.domElement.addEventListener('pointerup', (e) => {
   // A click, not the end of a drag of the orbit controls.
-  if (downAt && Math.hypot(e.clientX - downAt[0], e.clientY - downAt[1]) < 4) selectCurve(curveAt(e.clientX, e.clientY));
+  if (downAt && Math.hypot(e.clientX - downAt[0], e.clientY - downAt[1]) < 4) {
+    if ($('open-mode').checked) openPatch(patchAt(e.clientX, e.clientY));
+    else selectCurve(curveAt(e.clientX, e.clientY));
+  }
   downAt = null;
 });
 /** For tests: the page pixel of sample `i` of curve `k`. */

@@ -47,10 +47,14 @@ const ops = {
     check(withText(body, (p, n) => wasm.cn_surface(p, n, format, method, vertices, soft, quality)));
     return {
       positions: buffer(0, Float32Array), faces: buffer(1, Uint32Array), normals: buffer(2, Float32Array),
-      curvature: buffer(3, Float32Array), deviation: buffer(4, Float32Array), ...curves(),
+      curvature: buffer(3, Float32Array), deviation: buffer(4, Float32Array), facePatch: buffer(8, Uint32Array), ...curves(),
       vertices: wasm.cn_stat(0), faceCount: wasm.cn_stat(1), curveVertices: wasm.cn_stat(2), patches: wasm.cn_stat(3),
       range: wasm.cn_stat(4), deviationMax: wasm.cn_stat(5), warnings: text(),
     };
+  },
+  openPatch(body, format, patch, method, vertices, quality) {
+    check(withText(body, (p, n) => wasm.cn_open_patch(p, n, format, patch, method, vertices, quality)));
+    return text();
   },
   exportMesh(format) {
     check(wasm.cn_export_mesh(format));

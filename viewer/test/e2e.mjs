@@ -127,6 +127,22 @@ try {
   console.log(`clicked at (${cx.toFixed(0)}, ${cy.toFixed(0)}): curve ${picked} selected`);
   if (picked !== '2') fail(`a click on curve 2 selected curve ${picked}`);
 
+  // With "a click leaves a patch open": a click on the sphere's middle opens the octant there
+  // (7 patches, an open border), "fill every patch again" closes it (8).
+  const patches = () => page.getAttribute('#stats', 'data-patches');
+  if ((await patches()) !== '8') fail(`the sphere shows ${await patches()} patches, not 8`);
+  await page.check('#open-mode');
+  const box = await page.locator('#view canvas').boundingBox();
+  await page.mouse.click(box.x + box.width / 2 + 5, box.y + box.height / 2 + 5);
+  await page.waitForFunction(() => document.getElementById('stats').dataset.patches === '7', null, { timeout: 60000 })
+    .catch(() => fail('a click on the sphere in open mode left the 8 patches'));
+  console.log(`after a click in open mode: ${await page.textContent('#stats')}`);
+  await page.screenshot({ path: path.join(out, 'sphere-octant-open.png') });
+  await page.click('#fill-all');
+  await page.waitForFunction(() => document.getElementById('stats').dataset.patches === '8', null, { timeout: 60000 })
+    .catch(() => fail('"fill every patch again" did not give the 8 patches back'));
+  await page.uncheck('#open-mode');
+
   // The page keeps painting while a 100k-vertex default-quality solve runs in the worker.
   await page.selectOption('#quality', '1');
   await page.fill('#vertices', '5');

@@ -7,7 +7,7 @@
 use curvenet::io::{network_to_string, parse_network, read_network, NetworkFormat};
 use curvenet::network::examples::example;
 use curvenet::network::CycleKey;
-use curvenet::{infer_normals, network_with_cycles, surface, Network, Options};
+use curvenet::{infer_normals, network_with_cycles, surface, with_patch_left_open, Network, Options};
 use std::collections::HashMap;
 
 fn sketch(name: &str) -> Network {
@@ -132,4 +132,21 @@ fn the_network_with_its_cycles_surfaces_as_the_run_did() {
         };
         assert!(expected.is_none_or(|e| e == cycles), "{name}: {cycles} cycles");
     }
+}
+
+/// The viewer's click (`with_patch_left_open`): patch `k` of a run left open, also twice in a
+/// row (the second on the network with cycles the first returned); a patch past the cycles is
+/// an error naming it. `Surfacer` re-solves keep the given cycles.
+#[test]
+fn a_patch_of_a_run_is_left_open_by_its_number() {
+    let options = Options::default().with_vertices(3000);
+    let sphere = example("sphere").unwrap();
+    let once = with_patch_left_open(&sphere, &options, 3).unwrap();
+    let twice = with_patch_left_open(&once, &options, 0).unwrap();
+    assert_eq!(surface(&once, &options).unwrap().stats.cycles, 7);
+    assert_eq!(surface(&twice, &options).unwrap().stats.cycles, 6);
+    let e = with_patch_left_open(&sphere, &options, 8).unwrap_err();
+    assert!(e.to_string().contains("patch 8 cannot be left open") && e.exit_code() == 2, "{e}");
+    let mut s = curvenet::Surfacer::new(&twice, &options).unwrap();
+    assert_eq!(s.solve().unwrap().stats.cycles, 6);
 }

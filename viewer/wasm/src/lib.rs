@@ -31,6 +31,8 @@ struct Output {
     curve_offsets: Vec<u32>,
     /// 7: signed mean curvature, `#V` f32.
     mean_curvature: Vec<f32>,
+    /// 8: the patch of each triangle, `#F` u32.
+    face_patch: Vec<u32>,
     /// Statistics, by index of [`cn_stat`].
     stats: [f64; 8],
 }
@@ -143,6 +145,7 @@ pub fn surface_into_output(network: &Network, options: &Options) -> Result<(), E
         curvature_colors: scene.mean_curvature.iter().flat_map(|h| colormap::diverging(h / range)).collect(),
         deviation_colors: deviation.iter().flatten().flat_map(|a| colormap::sequential(a / dev_max)).collect(),
         mean_curvature: scene.mean_curvature.iter().map(|&h| h as f32).collect(),
+        face_patch: surface.mesh.face_patch.clone(),
         ..Default::default()
     };
     for c in &scene.curves {
@@ -285,6 +288,32 @@ pub unsafe extern "C" fn cn_rotate_normals(ptr: *const u8, len: usize, format: u
     })())
 }
 
+/// The network in `ptr[..len]` with patch `patch` of its surface (with the viewer's options)
+/// left open (`curvenet::with_patch_left_open`: its cycle removed, the cycles written first
+/// if the network has none); the new network, as JSON, goes to the text buffer.
+///
+/// # Safety
+/// `ptr` must point to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn cn_open_patch(
+    ptr: *const u8,
+    len: usize,
+    format: u32,
+    patch: u32,
+    method: u32,
+    vertices: u32,
+    quality: u32,
+) -> u32 {
+    finish((|| {
+        let text = text_arg(ptr, len)?;
+        let network = parse_network(&text, format_of(format)?, "network")?;
+        let opened =
+            curvenet::with_patch_left_open(&network, &options(method, vertices, 0.0, quality)?, patch as usize)?;
+        set_text(curvenet::io::network_to_string(&opened, NetworkFormat::Json));
+        Ok(())
+    })())
+}
+
 /// Number of curves of the network in `ptr[..len]` (or `u32::MAX` if it does not parse).
 ///
 /// # Safety
@@ -307,6 +336,7 @@ fn with_buffer<T>(kind: u32, f: impl FnOnce(*const u8, usize) -> T) -> T {
             5 => (o.curve_points.as_ptr() as *const u8, o.curve_points.len()),
             6 => (o.curve_offsets.as_ptr() as *const u8, o.curve_offsets.len()),
             7 => (o.mean_curvature.as_ptr() as *const u8, o.mean_curvature.len()),
+            8 => (o.face_patch.as_ptr() as *const u8, o.face_patch.len()),
             _ => (std::ptr::null(), 0),
         };
         f(p, n)

@@ -6,7 +6,7 @@
 
 use super::options::Options;
 use super::stats::Timings;
-use crate::error::{Result, Warning};
+use crate::error::{Error, Result, Warning};
 use crate::network::Network;
 use crate::topology::cycles::keys_of;
 
@@ -40,4 +40,26 @@ pub fn network_with_cycles(network: &Network, options: &Options) -> Result<(Netw
     let mut out = net;
     out.cycles = Some(keys_of(&topo.g, &topo.patches));
     Ok((out, warnings))
+}
+
+/// `network` with patch `patch` (numbered as a surface of it with `options` numbers its
+/// patches) left open: its cycle removed from [`Network::cycles`], which are first written
+/// as [`network_with_cycles`] does when the network has none (the viewer's click, docs/design.md
+/// §15). Patches past the cycles (those of lone closed boundary curves, found again by every
+/// run) cannot be left open this way: an error.
+pub fn with_patch_left_open(network: &Network, options: &Options, patch: usize) -> Result<Network> {
+    let mut net = match network.cycles {
+        Some(_) => network.clone(),
+        None => network_with_cycles(network, options)?.0,
+    };
+    let cycles = net.cycles.get_or_insert_with(Vec::new);
+    if patch >= cycles.len() {
+        return Err(Error::usage(format!(
+            "patch {patch} cannot be left open: the network's cycles are the patches 0 to {} (a patch past them is \
+             bounded by closed boundary curves that meet no other, which every run fills)",
+            cycles.len() as isize - 1
+        )));
+    }
+    cycles.remove(patch);
+    Ok(net)
 }

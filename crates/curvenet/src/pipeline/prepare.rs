@@ -243,6 +243,8 @@ pub(super) fn topology(
     if let Some(given) = network.cycles.as_deref() {
         crate::topology::cycles::check_keys(&g, given)?;
     }
+    // The network's own cycles where the caller has none (a re-preparation, `Surfacer`).
+    let cycles = cycles.or(network.cycles.as_deref());
     let (patches, w) = timed(&mut timings.cycles, || match cycles {
         Some(keys) => match patches_from_keys(&mut g, &splines, keys)? {
             Some(found) => Ok(found),
