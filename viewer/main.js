@@ -388,12 +388,13 @@ function patchAt(x, y) {
   const hit = raycaster.intersectObject(mesh, false)[0];
   return hit ? state.result.facePatch[hit.faceIndex] ?? -1 : -1;
 }
-/** The network with patch `k` left open (its cycle removed, by the library), then solved. */
-async function openPatch(k) {
+/** The network with its cycles changed by the library — `op` `openPatch` (patch `k` left open)
+ * or `fillCycle` (the open cycle along curve `k` filled) — then solved. */
+async function editCycles(op, k) {
   if (!(k >= 0)) return;
   try {
     const vertices = Math.round(10 ** +$('vertices').value);
-    const json = await util.call('openPatch', state.base, state.format, k, +$('method').value, vertices, +$('quality').value);
+    const json = await util.call(op, state.base, state.format, k, +$('method').value, vertices, +$('quality').value);
     if (state.original === null) state.original = { body: state.base, format: state.format };
     state.base = json; state.format = 0;
     $('fill-all').disabled = false;
@@ -417,7 +418,9 @@ renderer.domElement.addEventListener('pointerdown', (e) => { downAt = [e.clientX
 renderer.domElement.addEventListener('pointerup', (e) => {
   // A click, not the end of a drag of the orbit controls.
   if (downAt && Math.hypot(e.clientX - downAt[0], e.clientY - downAt[1]) < 4) {
-    if ($('open-mode').checked) openPatch(patchAt(e.clientX, e.clientY));
+    const mode = $('click-mode').value;
+    if (mode === 'open') editCycles('openPatch', patchAt(e.clientX, e.clientY));
+    else if (mode === 'fill') editCycles('fillCycle', curveAt(e.clientX, e.clientY));
     else selectCurve(curveAt(e.clientX, e.clientY));
   }
   downAt = null;

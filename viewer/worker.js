@@ -56,6 +56,10 @@ const ops = {
     check(withText(body, (p, n) => wasm.cn_open_patch(p, n, format, patch, method, vertices, quality)));
     return text();
   },
+  fillCycle(body, format, curve, method, vertices, quality) {
+    check(withText(body, (p, n) => wasm.cn_fill_cycle(p, n, format, curve, method, vertices, quality)));
+    return text();
+  },
   exportMesh(format) {
     check(wasm.cn_export_mesh(format));
     return new Uint8Array(wasm.memory.buffer, wasm.cn_bytes_ptr(), wasm.cn_bytes_len()).slice();

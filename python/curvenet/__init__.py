@@ -54,9 +54,11 @@ __all__ = [
     "eval",
     "example",
     "examples",
+    "fill_cycle",
     "harmonic",
     "infer_normals",
     "network_from_edges",
+    "open_patch",
     "read_mesh",
     "read_network",
     "surface",
@@ -420,6 +422,21 @@ def cycles(network, *, consolidate=None, gap=None, snap=None):
     for w in warnings:
         _warnings.warn(w, stacklevel=2)
     return net, warnings
+
+
+def open_patch(network, patch, **options):
+    """The network with patch ``patch`` of its surface left open (numbered as
+    ``surface(network, **options)`` numbers them): its cycle removed from ``network.cycles``,
+    which :func:`cycles` writes first when the network has none. The viewer's click on a patch."""
+    return _curvenet._open_patch(_as_network(network), _options("default", options), patch)
+
+
+def fill_cycle(network, curve, **options):
+    """The network with the open cycle along curve ``curve`` filled (a hole the cycle choice
+    left): the loop of curves with a patch on one side only through it, added to
+    ``network.cycles``. Raises :class:`UsageError` when the curve borders no open cycle or
+    several open borders meet on the loop. The viewer's click on a curve."""
+    return _curvenet._fill_cycle(_as_network(network), _options("default", options), curve)
 
 
 class Surfacer:

@@ -569,6 +569,22 @@ fn _cycles(py: Python<'_>, network: &PyNetwork, options: &PyOptions) -> PyResult
     Ok((PyNetwork { inner: out, source: network.source.clone() }, warning_tuples(&warnings)))
 }
 
+/// `network` with patch `patch` left open (`curvenet::with_patch_left_open`).
+#[pyfunction]
+fn _open_patch(py: Python<'_>, network: &PyNetwork, options: &PyOptions, patch: usize) -> PyResult<PyNetwork> {
+    let (net, opts) = (&network.inner, &options.inner);
+    let out = py.detach(|| curvenet::with_patch_left_open(net, opts, patch)).map_err(err)?;
+    Ok(PyNetwork { inner: out, source: network.source.clone() })
+}
+
+/// `network` with the open cycle along curve `curve` filled (`curvenet::with_cycle_filled`).
+#[pyfunction]
+fn _fill_cycle(py: Python<'_>, network: &PyNetwork, options: &PyOptions, curve: usize) -> PyResult<PyNetwork> {
+    let (net, opts) = (&network.inner, &options.inner);
+    let out = py.detach(|| curvenet::with_cycle_filled(net, opts, curve)).map_err(err)?;
+    Ok(PyNetwork { inner: out, source: network.source.clone() })
+}
+
 /// The warnings of a stage as Python takes them.
 fn warning_tuples(warnings: &[curvenet::Warning]) -> Vec<WarningTuple> {
     warnings.iter().map(|w| (w.message.clone(), w.at.curve, w.at.sample, w.at.node, w.at.patch)).collect()
@@ -764,6 +780,8 @@ fn _curvenet(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_infer_normals, m)?)?;
     m.add_function(wrap_pyfunction!(_consolidate, m)?)?;
     m.add_function(wrap_pyfunction!(_cycles, m)?)?;
+    m.add_function(wrap_pyfunction!(_open_patch, m)?)?;
+    m.add_function(wrap_pyfunction!(_fill_cycle, m)?)?;
     m.add_function(wrap_pyfunction!(_harmonic, m)?)?;
     m.add_function(wrap_pyfunction!(_eval, m)?)?;
     Ok(())

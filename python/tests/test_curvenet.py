@@ -646,3 +646,34 @@ def test_cycles_returns_the_runs_network_with_its_cycles_to_edit():
     net.cycles = [[(7, 0, 12, True)]]
     with pytest.raises(curvenet.TopologyError, match="curve 7 is not in the network"):
         curvenet.surface(net, vertices=4000)
+
+
+def _border_edges(F):
+    """Edges of the triangles `F` in one triangle only."""
+    edges = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(edges, axis=0, return_counts=True)
+    return int((counts == 1).sum())
+
+
+def test_a_patch_left_open_and_filled_again():
+    """`open_patch` and `fill_cycle` (the viewer's clicks): the sphere's octant 3 left open, then
+    filled from one of its curves, gives a closed sphere again; a curve with patches on both
+    sides is a UsageError."""
+    sphere = curvenet.example("sphere")
+    _, F, _ = curvenet.surface(sphere, vertices=3000)[:3]
+    opened = curvenet.open_patch(sphere, 3, vertices=3000)
+    assert len(opened.cycles) == 7
+    _, F_open, info = curvenet.surface(opened, vertices=3000)[:3]
+    assert info["cycles"] == 7 and _border_edges(F_open) > 0 and _border_edges(F) == 0
+    with pytest.raises(curvenet.UsageError, match="borders no open cycle"):
+        curvenet.fill_cycle(curvenet.cycles(sphere)[0], 0, vertices=3000)
+    for curve in range(3):
+        try:
+            filled = curvenet.fill_cycle(opened, curve, vertices=3000)
+            break
+        except curvenet.UsageError:
+            continue
+    _, F_filled, info = curvenet.surface(filled, vertices=3000)[:3]
+    # Closed again (the refilled octant is the last patch now, its cycle starts elsewhere: its
+    # triangulation may differ by a few triangles).
+    assert info["cycles"] == 8 and _border_edges(F_filled) == 0 and abs(len(F_filled) - len(F)) < 0.01 * len(F)

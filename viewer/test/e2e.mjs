@@ -127,21 +127,40 @@ try {
   console.log(`clicked at (${cx.toFixed(0)}, ${cy.toFixed(0)}): curve ${picked} selected`);
   if (picked !== '2') fail(`a click on curve 2 selected curve ${picked}`);
 
-  // With "a click leaves a patch open": a click on the sphere's middle opens the octant there
-  // (7 patches, an open border), "fill every patch again" closes it (8).
+  // "A click leaves the patch clicked open": a click on the sphere's middle opens the octant
+  // there (7 patches); "fills the open cycle along the curve clicked": a click on one of its
+  // curves closes it again (8); "as found" after a second opening gives the 8 back too.
   const patches = () => page.getAttribute('#stats', 'data-patches');
   if ((await patches()) !== '8') fail(`the sphere shows ${await patches()} patches, not 8`);
-  await page.check('#open-mode');
+  await page.selectOption('#click-mode', 'open');
   const box = await page.locator('#view canvas').boundingBox();
   await page.mouse.click(box.x + box.width / 2 + 5, box.y + box.height / 2 + 5);
   await page.waitForFunction(() => document.getElementById('stats').dataset.patches === '7', null, { timeout: 60000 })
     .catch(() => fail('a click on the sphere in open mode left the 8 patches'));
   console.log(`after a click in open mode: ${await page.textContent('#stats')}`);
   await page.screenshot({ path: path.join(out, 'sphere-octant-open.png') });
+  await page.selectOption('#click-mode', 'fill');
+  // The octant's border: quarter circles of the three curves; a click on each quarter's middle
+  // until one borders the hole.
+  let filled = false;
+  for (let k = 0; k < 3 && !filled; k++) {
+    for (const i of [16, 48, 80, 112]) {
+      const [x, y] = await page.evaluate(([k, i]) => window.curvenetViewer.screenPoint(k, i), [k, i]);
+      await page.mouse.click(x, y);
+      filled = await page.waitForFunction(() => document.getElementById('stats').dataset.patches === '8', null, { timeout: 3000 })
+        .then(() => true, () => false);
+      if (filled) { console.log(`a click on curve ${k} at sample ${i} filled the octant: ${await page.textContent('#stats')}`); break; }
+    }
+  }
+  if (!filled) fail('no click on the open octant\'s curves filled it');
+  await page.selectOption('#click-mode', 'open');
+  await page.mouse.click(box.x + box.width / 2 + 5, box.y + box.height / 2 + 5);
+  await page.waitForFunction(() => document.getElementById('stats').dataset.patches === '7', null, { timeout: 60000 })
+    .catch(() => fail('a second click in open mode left the 8 patches'));
   await page.click('#fill-all');
   await page.waitForFunction(() => document.getElementById('stats').dataset.patches === '8', null, { timeout: 60000 })
-    .catch(() => fail('"fill every patch again" did not give the 8 patches back'));
-  await page.uncheck('#open-mode');
+    .catch(() => fail('"as found" did not give the 8 patches back'));
+  await page.selectOption('#click-mode', 'select');
 
   // The page keeps painting while a 100k-vertex default-quality solve runs in the worker.
   await page.selectOption('#quality', '1');

@@ -71,5 +71,5 @@ pub use methods::{Energy, GuideArea, Method, SurfacingMethod};
 pub use network::{Curve, Network};
 pub use operators::Metric;
 pub use pipeline::surfacer::Surfacer;
-pub use pipeline::{infer_normals, network_with_cycles, with_patch_left_open, InferNormals};
+pub use pipeline::{infer_normals, network_with_cycles, with_cycle_filled, with_patch_left_open, InferNormals};
 pub use pipeline::{surface, surface_with_progress, MeshOptions, Options, Patching, Preset, Stats, Surface, Timings};

@@ -7,7 +7,9 @@
 use curvenet::io::{network_to_string, parse_network, read_network, NetworkFormat};
 use curvenet::network::examples::example;
 use curvenet::network::CycleKey;
-use curvenet::{infer_normals, network_with_cycles, surface, with_patch_left_open, Network, Options};
+use curvenet::{
+    infer_normals, network_with_cycles, surface, with_cycle_filled, with_patch_left_open, Network, Options,
+};
 use std::collections::HashMap;
 
 fn sketch(name: &str) -> Network {
@@ -149,4 +151,30 @@ fn a_patch_of_a_run_is_left_open_by_its_number() {
     assert!(e.to_string().contains("patch 8 cannot be left open") && e.exit_code() == 2, "{e}");
     let mut s = curvenet::Surfacer::new(&twice, &options).unwrap();
     assert_eq!(s.solve().unwrap().stats.cycles, 6);
+}
+
+/// The viewer's click on a curve (`with_cycle_filled`): the octant left open is filled again
+/// from any of its curves; a curve with patches on both sides is an error saying so; on the
+/// neatened teapot, whose cycle choice leaves holes, a hole found along some curve is filled
+/// (fewer border edges).
+#[test]
+fn an_open_cycle_is_filled_from_a_curve_along_it() {
+    let options = Options::default().with_vertices(3000);
+    let sphere = example("sphere").unwrap();
+    let (with, _) = network_with_cycles(&sphere, &options).unwrap();
+    let curve = with.cycles.as_ref().unwrap()[3][0].0;
+    let open = with_patch_left_open(&with, &options, 3).unwrap();
+    let e = with_cycle_filled(&with, &options, curve).unwrap_err().to_string();
+    assert!(e.contains("borders no open cycle"), "{e}");
+    let filled = with_cycle_filled(&open, &options, curve).unwrap();
+    let s = surface(&filled, &options).unwrap();
+    assert_eq!((s.stats.cycles, border_edges(&s.mesh.faces)), (8, 0));
+
+    let options = Options::default().with_vertices(8000);
+    let (teapot, _) = network_with_cycles(&sketch("teapot"), &options).unwrap();
+    let before = border_edges(&surface(&teapot, &options).unwrap().mesh.faces);
+    let filled = (0..teapot.curves.len()).find_map(|c| with_cycle_filled(&teapot, &options, c).ok()).expect("a hole");
+    let s = surface(&filled, &options).unwrap();
+    eprintln!("teapot: {before} border edges, {} after one hole filled", border_edges(&s.mesh.faces));
+    assert!(border_edges(&s.mesh.faces) < before);
 }

@@ -314,6 +314,31 @@ pub unsafe extern "C" fn cn_open_patch(
     })())
 }
 
+/// The network in `ptr[..len]` with the open cycle along curve `curve` filled
+/// (`curvenet::with_cycle_filled`, with the viewer's options); the new network, as JSON, goes
+/// to the text buffer.
+///
+/// # Safety
+/// `ptr` must point to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn cn_fill_cycle(
+    ptr: *const u8,
+    len: usize,
+    format: u32,
+    curve: u32,
+    method: u32,
+    vertices: u32,
+    quality: u32,
+) -> u32 {
+    finish((|| {
+        let text = text_arg(ptr, len)?;
+        let network = parse_network(&text, format_of(format)?, "network")?;
+        let filled = curvenet::with_cycle_filled(&network, &options(method, vertices, 0.0, quality)?, curve as usize)?;
+        set_text(curvenet::io::network_to_string(&filled, NetworkFormat::Json));
+        Ok(())
+    })())
+}
+
 /// Number of curves of the network in `ptr[..len]` (or `u32::MAX` if it does not parse).
 ///
 /// # Safety

@@ -8,7 +8,7 @@ use super::options::Options;
 use super::stats::Timings;
 use crate::error::{Error, Result, Warning};
 use crate::network::Network;
-use crate::topology::cycles::keys_of;
+use crate::topology::cycles::{keys_of, open_cycle_along};
 
 /// `network` as a surface run with `options` would surface it, with its patches' cycles in
 /// [`Network::cycles`], and the warnings of the stages run (consolidation, inference, node
@@ -61,5 +61,30 @@ pub fn with_patch_left_open(network: &Network, options: &Options, patch: usize) 
         )));
     }
     cycles.remove(patch);
+    Ok(net)
+}
+
+/// `network` with the open cycle along curve `curve` filled: the cycle of the open border (a
+/// loop of segments with a patch on one side only, boundary curves aside) that runs along it
+/// added to [`Network::cycles`] (written first as [`network_with_cycles`] does when the
+/// network has none; the viewer's click on a curve, docs/design.md §15). Errors when `curve`
+/// borders no open cycle or its border branches ([`open_cycle_along`]).
+pub fn with_cycle_filled(network: &Network, options: &Options, curve: usize) -> Result<Network> {
+    let mut net = match network.cycles {
+        Some(_) => network.clone(),
+        None => network_with_cycles(network, options)?.0,
+    };
+    let mut quiet = |_: &str, _: f64, _: &str| {};
+    let topo =
+        super::prepare::topology(&net, &options.mesh, net.cycles.as_deref(), &mut Timings::default(), &mut quiet)?;
+    let cycle = open_cycle_along(&topo.g, &topo.patches, curve)?;
+    let key = cycle
+        .iter()
+        .map(|h| {
+            let s = &topo.g.segments[h.segment];
+            (s.curve, s.first, s.last, h.forward)
+        })
+        .collect();
+    net.cycles.get_or_insert_with(Vec::new).push(key);
     Ok(net)
 }

@@ -25,7 +25,7 @@ pub mod solve;
 pub mod stats;
 pub mod surfacer;
 
-pub use cycles::{network_with_cycles, with_patch_left_open};
+pub use cycles::{network_with_cycles, with_cycle_filled, with_patch_left_open};
 pub use infer::{infer_normals, Inferred};
 pub use options::{InferNormals, MeshOptions, OptionSpec, Options, Patching, Preset, OPTIONS};
 pub use stats::{InferredNormals, Stats, Surface, Timings};

@@ -97,6 +97,62 @@ pub fn keys_of(g: &Graph, patches: &[Patch]) -> Vec<CycleKey> {
         .collect()
 }
 
+/// The open border of `patches` that runs along curve `curve`, as a cycle that fills it: the
+/// segments of `g` with one patch on one side and none on the other (boundary curves aside),
+/// followed from one of `curve`'s, each run against its patch's direction (so the new patch is
+/// oriented as its neighbours). Errors (usage: what the user pointed at has no such border)
+/// when `curve` borders no open cycle, or when the border branches at a node (several open
+/// borders meet there: the cycle to fill is a person's choice, in the file).
+pub fn open_cycle_along(g: &Graph, patches: &[Patch], curve: usize) -> Result<Vec<HalfEdge>> {
+    let n = g.segments.len();
+    let mut along: Vec<Vec<bool>> = vec![Vec::new(); n];
+    for p in patches {
+        for h in p.half_edges() {
+            along[h.segment].push(h.forward);
+        }
+    }
+    // Per open segment the direction of the filling half-edge, and its start node.
+    let fill: Vec<Option<HalfEdge>> = (0..n)
+        .map(|s| {
+            (along[s].len() == 1 && !g.segments[s].boundary).then(|| HalfEdge { segment: s, forward: !along[s][0] })
+        })
+        .collect();
+    let from = |h: HalfEdge| if h.forward { g.segments[h.segment].start } else { g.segments[h.segment].end };
+    let to = |h: HalfEdge| if h.forward { g.segments[h.segment].end } else { g.segments[h.segment].start };
+    let mut leaving: Vec<Vec<HalfEdge>> = vec![Vec::new(); g.nodes.len()];
+    for h in fill.iter().flatten() {
+        leaving[from(*h)].push(*h);
+    }
+    let label = g.labels.get(curve).cloned().unwrap_or_else(|| format!("curve {curve}"));
+    let Some(first) = fill.iter().flatten().find(|h| g.segments[h.segment].curve == curve).copied() else {
+        return Err(crate::Error::usage(format!(
+            "{label} borders no open cycle (each of its segments has patches on both sides, or none): nothing to fill"
+        )));
+    };
+    let mut cycle = vec![first];
+    while to(cycle[cycle.len() - 1]) != from(first) {
+        let at = to(cycle[cycle.len() - 1]);
+        let next: Vec<HalfEdge> =
+            leaving[at].iter().filter(|h| !cycle.iter().any(|c| c.segment == h.segment)).copied().collect();
+        match next.as_slice() {
+            [h] if cycle.len() < n => cycle.push(*h),
+            [] => {
+                return Err(crate::Error::usage(format!(
+                    "the open border along {label} does not close at node {at}: it ends on curves with patches on both \
+                     sides or none"
+                )))
+            }
+            _ => {
+                return Err(crate::Error::usage(format!(
+                    "the open border along {label} branches at node {at} (several open borders meet there): which \
+                     cycle to fill is yours to choose — add it to the \"cycles\" of `curvenet cycles`' file"
+                )))
+            }
+        }
+    }
+    Ok(cycle)
+}
+
 /// The patches of `g` bounded by the cycles `keys`, and the lone loops' tubes and disks;
 /// segments outside them are removed from `g`, each curve left out wholly named in a warning.
 /// `None` when some key is not a segment of `g` (the graph differs from the one the cycles
