@@ -81,6 +81,9 @@ fn a_cycle_deleted_from_the_file_is_left_open() {
     let border = border_edges(&open.mesh.faces);
     let expected = 1.5 * std::f64::consts::PI / open.stats.spacing;
     assert!((border as f64 - expected).abs() < 0.2 * expected, "{border} border edges, about {expected:.0} expected");
+    // The edited cycles survive a new inference of the normals (they are the user's).
+    let again = infer_normals(&net.without_normals(), &Options::default()).unwrap();
+    assert_eq!(again.network.cycles, net.cycles);
 }
 
 #[test]

@@ -85,7 +85,9 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
             }
         }
     };
-    inferred.network.cycles = inferred.cycles.clone().or(inferred.network.cycles.take());
+    // Cycles the network came with stay (they are the user's); else the ones chosen.
+    let given = inferred.network.cycles.take();
+    inferred.network.cycles = given.or_else(|| inferred.cycles.clone());
     for w in &mut inferred.warnings {
         w.message = without_a_surface(&w.message);
     }
