@@ -389,22 +389,44 @@ function patchAt(x, y) {
   return hit ? state.result.facePatch[hit.faceIndex] ?? -1 : -1;
 }
 /** The network with its cycles changed by the library — `op` `openPatch` (patch `k` left open)
- * or `fillCycle` (the open cycle along curve `k` filled) — then solved. */
+ * or `fillCycle` (the open cycle along curve `k` filled) — then solved. The edit is made on
+ * the network as shown (its turned normals included) and only while no solve runs (the patch
+ * and curve numbers are the surface's on the screen). */
 async function editCycles(op, k) {
   if (!(k >= 0)) return;
+  if ($('stats').dataset.solving === '1' || !state.result) { $('message').textContent = 'wait for the surface, then click again'; return; }
+  const before = state.base;
   try {
     const vertices = Math.round(10 ** +$('vertices').value);
-    const json = await util.call(op, state.base, state.format, k, +$('method').value, vertices, +$('quality').value);
-    if (state.original === null) state.original = { body: state.base, format: state.format };
-    state.base = json; state.format = 0;
-    $('fill-all').disabled = false;
-    // Consolidation may have joined or merged curves: the selector lists the network's own.
-    await listCurves(json, 0);
-    $('angle').value = 0; updateLabels();
-    solve();
+    const opts = [+$('method').value, vertices, +$('quality').value];
+    let net = await networkText();
+    const shown = $('curve').options.length;
+    if (op === 'fillCycle' && state.original === null) {
+      // The first edit: the network as surfaced (consolidated, with its cycles). Where that
+      // renumbered the curves, the curve clicked is not the one to fill: show it, ask again.
+      const surfaced = await util.call('cycles', net.text, net.format, ...opts);
+      if (await util.call('curveCount', surfaced, 0) !== shown) {
+        if (state.base !== before) return;
+        commit(surfaced);
+        $('message').textContent = 'the strokes were consolidated into other curves: click the curve again';
+        return;
+      }
+      net = { text: surfaced, format: 0 };
+    }
+    const json = await util.call(op, net.text, net.format, k, ...opts);
+    if (state.base !== before) return; // a new network or edit came meanwhile
+    commit(json);
   } catch (e) {
     $('message').textContent = e.message;
   }
+}
+/** Makes `json` (an edited network) the one shown, the one before the first edit kept. */
+function commit(json) {
+  if (state.original === null) state.original = { body: state.base, format: state.format };
+  state.base = json; state.format = 0;
+  $('fill-all').disabled = false;
+  // Consolidation may have joined or merged curves: the selector lists the network's own.
+  listCurves(json, 0).then(() => { $('angle').value = 0; updateLabels(); solve(); });
 }
 $('fill-all').addEventListener('click', () => {
   if (state.original === null) return;

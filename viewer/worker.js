@@ -52,6 +52,10 @@ const ops = {
       range: wasm.cn_stat(4), deviationMax: wasm.cn_stat(5), warnings: text(),
     };
   },
+  cycles(body, format, method, vertices, quality) {
+    check(withText(body, (p, n) => wasm.cn_cycles(p, n, format, method, vertices, quality)));
+    return text();
+  },
   openPatch(body, format, patch, method, vertices, quality) {
     check(withText(body, (p, n) => wasm.cn_open_patch(p, n, format, patch, method, vertices, quality)));
     return text();

@@ -131,7 +131,8 @@ try {
   // there (7 patches); "fills the open cycle along the curve clicked": a click on one of its
   // curves closes it again (8); "as found" after a second opening gives the 8 back too.
   const patches = () => page.getAttribute('#stats', 'data-patches');
-  if ((await patches()) !== '8') fail(`the sphere shows ${await patches()} patches, not 8`);
+  await page.waitForFunction(() => document.getElementById('stats').dataset.patches === '8' && document.getElementById('stats').dataset.solving === '0', null, { timeout: 60000 })
+    .catch(async () => fail(`the sphere shows ${await patches()} patches, not 8`));
   await page.selectOption('#click-mode', 'open');
   const box = await page.locator('#view canvas').boundingBox();
   await page.mouse.click(box.x + box.width / 2 + 5, box.y + box.height / 2 + 5);

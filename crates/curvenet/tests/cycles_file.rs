@@ -108,6 +108,17 @@ fn cycles_that_do_not_fit_the_network_are_errors_naming_the_cycle() {
     assert!(e.contains("cycle 8 ") && e.contains("in a third cycle"), "{e}");
     let e = with(&|c| c.push(Vec::new()));
     assert!(e.contains("cycle 8 ") && e.contains("has no segments"), "{e}");
+    let e = with(&|c| {
+        let first = c[4][0];
+        c[4].push(first);
+    });
+    assert!(e.contains("cycle 4 ") && e.contains("is twice"), "{e}");
+    // A cycle turned the other way runs along its neighbours' segments in their direction.
+    let e = with(&|c| {
+        c[5].reverse();
+        c[5].iter_mut().for_each(|s| s.3 = !s.3);
+    });
+    assert!(e.contains("cycle 5 ") && e.contains("in the direction cycle"), "{e}");
 }
 
 /// `curvenet cycles` (`network_with_cycles`): the network a default run uses, with every

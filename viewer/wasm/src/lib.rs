@@ -288,6 +288,29 @@ pub unsafe extern "C" fn cn_rotate_normals(ptr: *const u8, len: usize, format: u
     })())
 }
 
+/// The network in `ptr[..len]` as a surface run with the viewer's options uses it, with its
+/// patches' cycles (`curvenet::network_with_cycles`); as JSON, to the text buffer.
+///
+/// # Safety
+/// `ptr` must point to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn cn_cycles(
+    ptr: *const u8,
+    len: usize,
+    format: u32,
+    method: u32,
+    vertices: u32,
+    quality: u32,
+) -> u32 {
+    finish((|| {
+        let text = text_arg(ptr, len)?;
+        let network = parse_network(&text, format_of(format)?, "network")?;
+        let (with, _) = curvenet::network_with_cycles(&network, &options(method, vertices, 0.0, quality)?)?;
+        set_text(curvenet::io::network_to_string(&with, NetworkFormat::Json));
+        Ok(())
+    })())
+}
+
 /// The network in `ptr[..len]` with patch `patch` of its surface (with the viewer's options)
 /// left open (`curvenet::with_patch_left_open`: its cycle removed, the cycles written first
 /// if the network has none); the new network, as JSON, goes to the text buffer.

@@ -52,9 +52,12 @@ pub struct Network {
 
 /// A patch's cycle by its segments' places on the curves: per segment `(curve, first sample,
 /// last sample, forward)` — the stretch of curve `curve` between the nodes at samples `first`
-/// and `last` (in sample order; across the end of a closed curve when `last < first`), run
-/// along in sample order (`forward`) or against it. Places survive a new node finding on the
-/// same curves, which numbers the segments anew.
+/// and `last`, run along in sample order (`forward`) or against it. The samples are those of
+/// the curve as node finding splits it (validated, with a sample inserted where another curve
+/// crosses between two samples; `last` equals the number of samples where a segment ends at
+/// sample 0 of a closed curve), so cycles are written by `curvenet cycles` and edited by
+/// deleting or copying them, not by counting samples in the file. Places survive a new node
+/// finding on the same curves, which numbers the segments anew.
 pub type CycleKey = Vec<(usize, usize, usize, bool)>;
 
 impl Curve {
@@ -104,14 +107,38 @@ impl Curve {
 /// or split, so that later messages keep the input's numbers) is shown by that name alone:
 /// one number names one curve in every message of a run (issue 33).
 pub fn curve_label(curves: &[Curve], index: usize) -> String {
-    match curves.get(index).and_then(|c| c.name.as_deref()) {
+    let name = curves.get(index).and_then(|c| c.name.as_deref());
+    let shared = name.is_some_and(|n| curves.iter().filter(|c| c.name.as_deref() == Some(n)).nth(1).is_some());
+    label_of(index, name, shared)
+}
+
+/// [`curve_label`] of every curve, the names counted once (linear in the curves, where a
+/// label each would be quadratic).
+pub fn curve_labels(curves: &[Curve]) -> Vec<String> {
+    let mut count: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    for n in curves.iter().filter_map(|c| c.name.as_deref()) {
+        *count.entry(n).or_default() += 1;
+    }
+    curves
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let name = c.name.as_deref();
+            label_of(i, name, name.is_some_and(|n| count.get(n).copied().unwrap_or(0) > 1))
+        })
+        .collect()
+}
+
+/// The label of curve `index` named `name`, a name `shared` with other curves or not.
+fn label_of(index: usize, name: Option<&str>, shared: bool) -> String {
+    match name {
         Some(name) if is_position_name(name) => name.to_string(),
         Some(name) => {
             let shown: String = name
                 .chars()
                 .map(|ch| if ch.is_control() { ch.escape_unicode().to_string() } else { ch.to_string() })
                 .collect();
-            if curves.iter().filter(|c| c.name.as_deref() == Some(name)).nth(1).is_some() {
+            if shared {
                 format!("curve {index} (\"{shown}\")")
             } else {
                 format!("curve \"{shown}\"")
@@ -373,8 +400,9 @@ impl Network {
         let dup_tol = Self::DUPLICATE_RELATIVE * diag;
 
         let mut curves = Vec::with_capacity(self.curves.len());
+        let labels = curve_labels(&self.curves);
         for (ci, c) in self.curves.iter().enumerate() {
-            let label = curve_label(&self.curves, ci);
+            let label = labels[ci].clone();
             let mut points: Vec<DVec3> = Vec::with_capacity(c.points.len());
             let mut normals: Vec<DVec3> = Vec::with_capacity(c.points.len());
             let mut normals_right: Vec<DVec3> = Vec::with_capacity(c.normals_right.len());

@@ -5,15 +5,16 @@
 //! open, or adds one.
 
 use super::options::Options;
+use super::prepare::{topology, Topology};
 use super::stats::Timings;
 use crate::error::{Error, Result, Warning};
 use crate::network::Network;
 use crate::topology::cycles::{keys_of, open_cycle_along};
 
-/// `network` as a surface run with `options` would surface it, with its patches' cycles in
-/// [`Network::cycles`], and the warnings of the stages run (consolidation, inference, node
-/// finding, cycles). A network that has cycles keeps them (checked against it).
-pub fn network_with_cycles(network: &Network, options: &Options) -> Result<(Network, Vec<Warning>)> {
+/// `network` as a surface run with `options` would surface it — consolidated (unless it has
+/// cycles), its missing normals inferred (keeping cycles it has) — with its topology, and the
+/// warnings of those stages.
+fn as_surfaced(network: &Network, options: &Options) -> Result<(Network, Topology, Vec<Warning>)> {
     let mut quiet = |_: &str, _: f64, _: &str| {};
     let mut warnings = Vec::new();
     let consolidated = super::consolidate(network, options, &mut quiet)?;
@@ -32,9 +33,16 @@ pub fn network_with_cycles(network: &Network, options: &Options) -> Result<(Netw
     } else {
         net
     };
-    let topo =
-        super::prepare::topology(&net, &options.mesh, net.cycles.as_deref(), &mut Timings::default(), &mut quiet)?;
-    warnings.extend(topo.warnings);
+    let topo = topology(&net, &options.mesh, net.cycles.as_deref(), &mut Timings::default(), &mut quiet)?;
+    warnings.extend(topo.warnings.iter().cloned());
+    Ok((net, topo, warnings))
+}
+
+/// `network` as a surface run with `options` would surface it, with its patches' cycles in
+/// [`Network::cycles`], and the warnings of the stages run (consolidation, inference, node
+/// finding, cycles). A network that has cycles keeps them (checked against it).
+pub fn network_with_cycles(network: &Network, options: &Options) -> Result<(Network, Vec<Warning>)> {
+    let (net, topo, warnings) = as_surfaced(network, options)?;
     // The network as the run had it, not validated again: a surface made from it validates it
     // as the run did (the same graph, so the keys fit) and gives the run's mesh to the bit.
     let mut out = net;
@@ -44,14 +52,11 @@ pub fn network_with_cycles(network: &Network, options: &Options) -> Result<(Netw
 
 /// `network` with patch `patch` (numbered as a surface of it with `options` numbers its
 /// patches) left open: its cycle removed from [`Network::cycles`], which are first written
-/// as [`network_with_cycles`] does when the network has none (the viewer's click, docs/design.md
-/// §15). Patches past the cycles (those of lone closed boundary curves, found again by every
-/// run) cannot be left open this way: an error.
+/// as [`network_with_cycles`] does (the viewer's click, docs/design.md §15). Patches past the
+/// cycles (those of lone closed boundary curves, found again by every run) cannot be left open
+/// this way: an error.
 pub fn with_patch_left_open(network: &Network, options: &Options, patch: usize) -> Result<Network> {
-    let mut net = match network.cycles {
-        Some(_) => network.clone(),
-        None => network_with_cycles(network, options)?.0,
-    };
+    let (mut net, _) = network_with_cycles(network, options)?;
     let cycles = net.cycles.get_or_insert_with(Vec::new);
     if patch >= cycles.len() {
         return Err(Error::usage(format!(
@@ -64,27 +69,25 @@ pub fn with_patch_left_open(network: &Network, options: &Options, patch: usize) 
     Ok(net)
 }
 
-/// `network` with the open cycle along curve `curve` filled: the cycle of the open border (a
-/// loop of segments with a patch on one side only, boundary curves aside) that runs along it
-/// added to [`Network::cycles`] (written first as [`network_with_cycles`] does when the
-/// network has none; the viewer's click on a curve, docs/design.md §15). Errors when `curve`
-/// borders no open cycle or its border branches ([`open_cycle_along`]).
+/// `network` with the open cycle along curve `curve` (of the network as surfaced: consolidated
+/// where it has no cycles yet) filled: the cycle of the open border (a loop of segments with a
+/// patch on one side only, boundary curves aside) that runs along it added to
+/// [`Network::cycles`], which are first written as [`network_with_cycles`] does (the viewer's
+/// click on a curve, docs/design.md §15). Errors when `curve` borders no open cycle or its
+/// border branches ([`open_cycle_along`]).
 pub fn with_cycle_filled(network: &Network, options: &Options, curve: usize) -> Result<Network> {
-    let mut net = match network.cycles {
-        Some(_) => network.clone(),
-        None => network_with_cycles(network, options)?.0,
-    };
-    let mut quiet = |_: &str, _: f64, _: &str| {};
-    let topo =
-        super::prepare::topology(&net, &options.mesh, net.cycles.as_deref(), &mut Timings::default(), &mut quiet)?;
+    let (mut net, topo, _) = as_surfaced(network, options)?;
     let cycle = open_cycle_along(&topo.g, &topo.patches, curve)?;
-    let key = cycle
-        .iter()
-        .map(|h| {
-            let s = &topo.g.segments[h.segment];
-            (s.curve, s.first, s.last, h.forward)
-        })
-        .collect();
-    net.cycles.get_or_insert_with(Vec::new).push(key);
+    let mut cycles = keys_of(&topo.g, &topo.patches);
+    cycles.push(
+        cycle
+            .iter()
+            .map(|h| {
+                let s = &topo.g.segments[h.segment];
+                (s.curve, s.first, s.last, h.forward)
+            })
+            .collect(),
+    );
+    net.cycles = Some(cycles);
     Ok(net)
 }

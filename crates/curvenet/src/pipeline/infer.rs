@@ -85,13 +85,44 @@ pub fn infer_normals(network: &Network, options: &Options) -> Result<Inferred> {
             }
         }
     };
-    // Cycles the network came with stay (they are the user's); else the ones chosen.
-    let given = inferred.network.cycles.take();
-    inferred.network.cycles = given.or_else(|| inferred.cycles.clone());
+    // Cycles the network came with stay (they are the user's; they name its curves, so none
+    // may have been left out); else the patches a run makes of the cycles chosen (the search's
+    // where they fit the network's graph, the walk's otherwise), so that the file surfaces
+    // as the run does.
+    match inferred.network.cycles.take() {
+        Some(given) => {
+            if inferred.network.curves.len() != network.curves.len() {
+                return Err(curves_left_out(network.curves.len() - inferred.network.curves.len()));
+            }
+            inferred.network.cycles = Some(given);
+        }
+        // Nothing inferred: the network as it came (the walk finds its cycles as before).
+        None if !needs_inference(network, options) => {}
+        None => {
+            let mut quiet = |_: &str, _: f64, _: &str| {};
+            let mut timings = crate::pipeline::Timings::default();
+            let topo = super::prepare::topology(
+                &inferred.network,
+                &options.mesh,
+                inferred.cycles.as_deref(),
+                &mut timings,
+                &mut quiet,
+            );
+            inferred.network.cycles = topo.ok().map(|t| crate::topology::cycles::keys_of(&t.g, &t.patches));
+        }
+    }
     for w in &mut inferred.warnings {
         w.message = without_a_surface(&w.message);
     }
     Ok(inferred)
+}
+
+/// The error for cycles given with a network some of whose curves inference left out.
+fn curves_left_out(n: usize) -> crate::Error {
+    crate::Error::topology(format!(
+        "the network's \"cycles\" name its curves by index, but {n} of its curves were left out as duplicates \
+         while inferring normals: remove them from the file, or remove \"cycles\""
+    ))
 }
 
 /// A warning of the inference said where no surface is made (`curvenet normals`, Python's
@@ -124,14 +155,12 @@ pub(crate) fn infer_and_prepare(
     if let Some(given) = network.cycles.as_deref() {
         // Cycles given with the network: its curves' normals are inferred around them (the
         // search's, as without them), the patches are the given cycles.
-        let i = infer(network, options, true)?;
+        let mut i = infer(network, options, true)?;
         if i.network.curves.len() != network.curves.len() {
-            return Err(crate::Error::topology(format!(
-                "the network's \"cycles\" name its curves by index, but {} of its curves were left out as \
-                 duplicates while inferring normals: remove them from the file, or remove \"cycles\"",
-                network.curves.len() - i.network.curves.len()
-            )));
+            return Err(curves_left_out(network.curves.len() - i.network.curves.len()));
         }
+        // The given cycles are the patches (also of a `Surfacer`'s re-preparation).
+        i.cycles = Some(given.to_vec());
         let p = prepare(&i.network, options, Some(given), progress).map_err(explain)?;
         return Ok((Some(i), p));
     }

@@ -27,7 +27,7 @@ mod overdraw;
 
 use crate::error::{Result, Warning};
 use crate::geom::{fmt_point, DVec3};
-use crate::network::{curve_label, Curve, Network};
+use crate::network::{Curve, Network};
 use crate::solve::timing::{seconds_since, Instant};
 use dense::Dense;
 use serde::Serialize;
@@ -195,7 +195,7 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
         return Ok(unchanged(gap));
     }
     let curves = emit(&d, &net.curves, &pieces, &od.moved);
-    let labels: Vec<String> = (0..net.curves.len()).map(|i| curve_label(&net.curves, i)).collect();
+    let labels: Vec<String> = crate::network::curve_labels(&net.curves);
     let warnings = warnings(&labels, &od.merges, &hooks, &gaps, od.dropped, gap);
     let report = Consolidation {
         gap,

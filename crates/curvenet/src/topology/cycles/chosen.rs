@@ -25,7 +25,10 @@ pub fn segment_places(g: &Graph) -> HashMap<(usize, usize, usize), usize> {
 /// The error names the cycle, the segment and what is wrong with it.
 pub fn check_keys(g: &Graph, keys: &[CycleKey]) -> Result<()> {
     let at = segment_places(g);
-    let mut uses = vec![0u8; g.segments.len()];
+    let parts = Parts::new(g);
+    let lone = |s: usize| !parts.has_interior[parts.seg_root[s]] && g.segments[s].boundary;
+    // Per segment: the cycles along it so far, with their direction.
+    let mut uses: Vec<Vec<(usize, bool)>> = vec![Vec::new(); g.segments.len()];
     let fail = |k: usize, what: String| {
         Err(crate::Error::topology(format!(
             "cycle {k} of the network's \"cycles\": {what} (a cycle lists the segments around a patch, \
@@ -49,12 +52,28 @@ pub fn check_keys(g: &Graph, keys: &[CycleKey]) -> Result<()> {
                 };
                 return fail(k, what);
             };
-            uses[s] += 1;
-            if uses[s] > 2 {
-                return fail(k, format!("the segment of {} from sample {f} to {l} is in a third cycle", g.labels[c]));
+            let what = match uses[s].as_slice() {
+                [.., (j, _)] if *j == k => Some("twice".to_string()),
+                [_, _] => Some("in a third cycle".to_string()),
+                [(j, fw)] if *fw == forward => Some(format!(
+                    "in the direction cycle {j} runs along it too (two patches that share a segment run along it in \
+                     opposite directions: reverse this cycle's segments, or cycle {j}'s)"
+                )),
+                _ => None,
+            };
+            if let Some(what) = what {
+                return fail(k, format!("the segment of {} from sample {f} to {l} is {what}", g.labels[c]));
             }
+            uses[s].push((k, forward));
             let seg = &g.segments[s];
             ends.push(if forward { (seg.start, seg.end) } else { (seg.end, seg.start) });
+        }
+        if key.iter().all(|&(c, f, l, _)| lone(at[&(c, f, l)])) {
+            return fail(
+                k,
+                "it runs along closed boundary curves that meet no other curve only, which every run fills by itself"
+                    .into(),
+            );
         }
         for i in 0..ends.len() {
             let next = ends[(i + 1) % ends.len()];

@@ -24,7 +24,7 @@ mod split;
 use super::UnionFind;
 use crate::error::{Result, Warning};
 use crate::geom::{fmt_point, DVec3};
-use crate::network::{curve_label, Network};
+use crate::network::Network;
 use contacts::{cluster_contacts, find_contacts, Polylines};
 use meetings::meeting_nodes;
 use split::{add_end_nodes, segments_of, split_curve};
@@ -135,7 +135,7 @@ impl Graph {
 /// node, and two nodes that land on one point of a curve. The warnings are empty for now.
 pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
     let curves = &net.curves;
-    let labels: Vec<String> = (0..curves.len()).map(|i| curve_label(curves, i)).collect();
+    let labels: Vec<String> = crate::network::curve_labels(curves);
     let warnings = Vec::new();
     let lines = Polylines::new(curves, &labels);
     let hits = find_contacts(&lines, snap)?;
