@@ -272,6 +272,25 @@ pub unsafe extern "C" fn cn_example(ptr: *const u8, len: usize) -> u32 {
     })())
 }
 
+/// The network in `ptr[..len]` (format `format`) changed by `edit`, as JSON in the text
+/// buffer: the entry points that edit a network.
+///
+/// # Safety
+/// `ptr` must point to `len` readable bytes.
+unsafe fn edit_network(
+    ptr: *const u8,
+    len: usize,
+    format: u32,
+    edit: impl FnOnce(&Network) -> Result<Network, Error>,
+) -> u32 {
+    finish((|| {
+        let text = text_arg(ptr, len)?;
+        let network = parse_network(&text, format_of(format)?, "network")?;
+        set_text(curvenet::io::network_to_string(&edit(&network)?, NetworkFormat::Json));
+        Ok(())
+    })())
+}
+
 /// Rotates the normals of curve `curve` of the network in `ptr[..len]` by `degrees` about the
 /// curve's tangent; the new network, as JSON, goes to the text buffer.
 ///
@@ -279,13 +298,7 @@ pub unsafe extern "C" fn cn_example(ptr: *const u8, len: usize) -> u32 {
 /// `ptr` must point to `len` readable bytes.
 #[no_mangle]
 pub unsafe extern "C" fn cn_rotate_normals(ptr: *const u8, len: usize, format: u32, curve: u32, degrees: f64) -> u32 {
-    finish((|| {
-        let text = text_arg(ptr, len)?;
-        let network = parse_network(&text, format_of(format)?, "network")?;
-        let turned = curvenet::network::edit::rotate_normals(&network, curve as usize, degrees)?;
-        set_text(curvenet::io::network_to_string(&turned, NetworkFormat::Json));
-        Ok(())
-    })())
+    edit_network(ptr, len, format, |network| curvenet::network::edit::rotate_normals(network, curve as usize, degrees))
 }
 
 /// The network in `ptr[..len]` as a surface run with the viewer's options uses it, with its
@@ -302,13 +315,9 @@ pub unsafe extern "C" fn cn_cycles(
     vertices: u32,
     quality: u32,
 ) -> u32 {
-    finish((|| {
-        let text = text_arg(ptr, len)?;
-        let network = parse_network(&text, format_of(format)?, "network")?;
-        let (with, _) = curvenet::network_with_cycles(&network, &options(method, vertices, 0.0, quality)?)?;
-        set_text(curvenet::io::network_to_string(&with, NetworkFormat::Json));
-        Ok(())
-    })())
+    edit_network(ptr, len, format, |network| {
+        Ok(curvenet::network_with_cycles(network, &options(method, vertices, 0.0, quality)?)?.0)
+    })
 }
 
 /// The network in `ptr[..len]` with patch `patch` of its surface (with the viewer's options)
@@ -327,14 +336,9 @@ pub unsafe extern "C" fn cn_open_patch(
     vertices: u32,
     quality: u32,
 ) -> u32 {
-    finish((|| {
-        let text = text_arg(ptr, len)?;
-        let network = parse_network(&text, format_of(format)?, "network")?;
-        let opened =
-            curvenet::with_patch_left_open(&network, &options(method, vertices, 0.0, quality)?, patch as usize)?;
-        set_text(curvenet::io::network_to_string(&opened, NetworkFormat::Json));
-        Ok(())
-    })())
+    edit_network(ptr, len, format, |network| {
+        curvenet::with_patch_left_open(network, &options(method, vertices, 0.0, quality)?, patch as usize)
+    })
 }
 
 /// The network in `ptr[..len]` with the open cycle along curve `curve` filled
@@ -353,13 +357,9 @@ pub unsafe extern "C" fn cn_fill_cycle(
     vertices: u32,
     quality: u32,
 ) -> u32 {
-    finish((|| {
-        let text = text_arg(ptr, len)?;
-        let network = parse_network(&text, format_of(format)?, "network")?;
-        let filled = curvenet::with_cycle_filled(&network, &options(method, vertices, 0.0, quality)?, curve as usize)?;
-        set_text(curvenet::io::network_to_string(&filled, NetworkFormat::Json));
-        Ok(())
-    })())
+    edit_network(ptr, len, format, |network| {
+        curvenet::with_cycle_filled(network, &options(method, vertices, 0.0, quality)?, curve as usize)
+    })
 }
 
 /// Number of curves of the network in `ptr[..len]` (or `u32::MAX` if it does not parse).

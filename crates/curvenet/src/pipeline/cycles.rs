@@ -9,7 +9,7 @@ use super::prepare::{topology, Topology};
 use super::stats::Timings;
 use crate::error::{Error, Result, Warning};
 use crate::network::Network;
-use crate::topology::cycles::{keys_of, open_cycle_along};
+use crate::topology::cycles::{key_of, keys_of, open_cycle_along};
 
 /// `network` as a surface run with `options` would surface it — consolidated (unless it has
 /// cycles), its missing normals inferred (keeping cycles it has) — with its topology, and the
@@ -79,15 +79,7 @@ pub fn with_cycle_filled(network: &Network, options: &Options, curve: usize) -> 
     let (mut net, topo, _) = as_surfaced(network, options)?;
     let cycle = open_cycle_along(&topo.g, &topo.patches, curve)?;
     let mut cycles = keys_of(&topo.g, &topo.patches);
-    cycles.push(
-        cycle
-            .iter()
-            .map(|h| {
-                let s = &topo.g.segments[h.segment];
-                (s.curve, s.first, s.last, h.forward)
-            })
-            .collect(),
-    );
+    cycles.push(key_of(&topo.g, &cycle));
     net.cycles = Some(cycles);
     Ok(net)
 }

@@ -102,16 +102,19 @@ pub fn keys_of(g: &Graph, patches: &[Patch]) -> Vec<CycleKey> {
     patches
         .iter()
         .filter_map(|p| match p {
-            Patch::Disk(cycle) if !cycle.iter().all(|h| lone(h.segment)) => Some(
-                cycle
-                    .iter()
-                    .map(|h| {
-                        let s = &g.segments[h.segment];
-                        (s.curve, s.first, s.last, h.forward)
-                    })
-                    .collect(),
-            ),
+            Patch::Disk(cycle) if !cycle.iter().all(|h| lone(h.segment)) => Some(key_of(g, cycle)),
             _ => None,
+        })
+        .collect()
+}
+
+/// The cycle of half-edges `cycle` of `g` as a [`CycleKey`]: its segments' places.
+pub fn key_of(g: &Graph, cycle: &[HalfEdge]) -> CycleKey {
+    cycle
+        .iter()
+        .map(|h| {
+            let s = &g.segments[h.segment];
+            (s.curve, s.first, s.last, h.forward)
         })
         .collect()
 }

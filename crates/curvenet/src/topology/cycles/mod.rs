@@ -26,7 +26,7 @@ use super::nodes::Graph;
 use crate::curves::CurveSpline;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
-pub use chosen::{check_keys, keys_of, open_cycle_along, patches_from_keys, segment_places};
+pub use chosen::{check_keys, key_of, keys_of, open_cycle_along, patches_from_keys, segment_places};
 use faces::{check_boundary_sides, check_valence, classify_faces, node_ends, trace_faces, Parts, Rotation};
 use lone::{lone_loops, lone_patches};
 

@@ -102,18 +102,7 @@ pub use crate::network::CycleKey;
 impl Choice {
     /// The chosen cycles as [`CycleKey`]s on `g`.
     pub fn keys(&self, g: &Graph) -> Vec<CycleKey> {
-        self.patches
-            .iter()
-            .map(|p| {
-                p.cycle
-                    .iter()
-                    .map(|h| {
-                        let s = &g.segments[h.segment];
-                        (s.curve, s.first, s.last, h.forward)
-                    })
-                    .collect()
-            })
-            .collect()
+        self.patches.iter().map(|p| crate::topology::cycles::key_of(g, &p.cycle)).collect()
     }
 }
 
