@@ -152,6 +152,11 @@ pub struct Iterated {
     /// The last factorisations of the normals' system and (with open borders, uniform
     /// weighting or soft constraints) of the fit's.
     systems: Option<(Eliminated, Option<Eliminated>)>,
+    /// Whether the last iteration's operators are kept with its factorisations, for
+    /// [`Iterated::resolve`] ([`crate::Surfacer`]; a one-shot run frees them).
+    pub(crate) keep_operators: bool,
+    /// The last iteration's operators (when `keep_operators`).
+    operators: Option<Operators>,
 }
 
 /// One iteration's operators and systems on the current surface `V_k`.
@@ -194,7 +199,7 @@ impl Iterated {
 
     /// The iterations with `params`, nothing factorised yet.
     pub fn new(params: IterationParams) -> Self {
-        Iterated { params, systems: None }
+        Iterated { params, systems: None, keep_operators: false, operators: None }
     }
 
     /// The iterations with `params`, whose first normals' system reuses the symbolic analysis
@@ -202,7 +207,7 @@ impl Iterated {
     /// `(Ls M⁻¹ Ls)_ff` on the same mesh: `Ls M⁻¹ Ls + μ M` has its pattern, so the first
     /// iteration is a numeric factorisation only (a different pattern is analysed afresh).
     pub(crate) fn reusing(params: IterationParams, propagation: Option<Eliminated>) -> Self {
-        Iterated { params, systems: propagation.map(|p| (p, None)) }
+        Iterated { params, systems: propagation.map(|p| (p, None)), keep_operators: false, operators: None }
     }
 
     /// Iterates from `start` (a normal-control result on `mesh`). Returns the final surface
@@ -308,7 +313,63 @@ impl Iterated {
         let fit = fit_own.as_ref().unwrap_or(&normals_system);
         let result = inner_steps(&step, vk, &normals_system, fit, t);
         self.systems = Some((normals_system, fit_own));
+        self.operators = self.keep_operators.then_some(step.ops);
         result
+    }
+
+    /// A re-solve on the same mesh after the curve values changed ([`crate::Surfacer`], issue
+    /// 31): the start is `previous` (the last result, on this mesh) with the curve vertices at
+    /// their new positions and the free vertices moved by the biharmonic extension of their
+    /// moves (`Q_ff δ_f = −(Ls M⁻¹ Ls)_fc δ_c`, one solve with the kept factorisation), then
+    /// one iteration's inner steps (module docs, steps 2–5) with the kept operators and
+    /// factorisations — built on the surface of the last factorisation, not on the start: no
+    /// assembly and no factorisation, right-hand sides and triangular solves only. `None` when
+    /// nothing is kept (no earlier iteration, or a one-shot run) or the start degenerates.
+    pub(crate) fn resolve(
+        &mut self,
+        mesh: &Mesh,
+        previous: &[DVec3],
+        t: &mut SolveTimings,
+    ) -> Option<Result<(MethodResult, IterationReport)>> {
+        let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
+        let (normals_system, fit_own) = self.systems.as_ref()?;
+        if previous.len() != n || n == nc || self.operators.as_ref()?.mass.len() != n {
+            return None;
+        }
+        let ops = self.operators.take()?;
+        let params = &self.params;
+        let o = &params.options;
+        let first = if params.soft_weight.is_some() { 0 } else { nc };
+        let mu = if o.normal_prior > 0.0 { (o.normal_prior * params.patch_size).powi(-4) } else { 0.0 };
+        let clock = crate::solve::timing::Instant::now();
+        let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
+        let w = fit_weights(&mesh.fit_row_left_out(), &inv_m, params.energy);
+        let step = Step { mesh, params, ops, inv_m, w, first, mu };
+        let mut start = previous.to_vec();
+        start[..nc].copy_from_slice(&mesh.positions[..nc]);
+        if first == nc {
+            let moves: Vec<DVec3> = (0..nc).map(|k| mesh.positions[k] - previous[k]).collect();
+            let energy = LeastSquares { a: &step.ops.ls, w: &step.inv_m, first };
+            let rhs = energy.rhs(None, &known_rows(n, nc, &[&moves]));
+            let delta = normals_system.solve(rhs);
+            for k in nc..n {
+                start[k] += DVec3::new(delta[(k - nc, 0)], delta[(k - nc, 1)], delta[(k - nc, 2)]);
+            }
+        }
+        t.solve += crate::solve::timing::seconds_since(clock);
+        if degenerate(&mesh.faces, &start) {
+            self.operators = Some(step.ops);
+            return None;
+        }
+        let fit = fit_own.as_ref().unwrap_or(normals_system);
+        let result = inner_steps(&step, &start, normals_system, fit, t).map(|(next, normals, h)| {
+            let update = next.iter().zip(&start).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+            let stop = if update < o.tolerance * params.spacing { Stop::Converged } else { Stop::MaxIterations };
+            let result = MethodResult { positions: next, propagated_normals: Some(normals), guide_curvature: Some(h) };
+            (result, IterationReport { updates: vec![update], stop })
+        });
+        self.operators = Some(step.ops);
+        Some(result)
     }
 }
 

@@ -23,6 +23,12 @@ use std::borrow::Cow;
 pub(crate) struct Kept {
     method: Box<dyn SurfacingMethod>,
     iterated: Option<Iterated>,
+    /// The operators of the patches' domains (they depend on the mesh only).
+    ops: Option<Operators>,
+    /// The last solve's positions on the solved mesh: the start of a re-solve's iteration.
+    last: Option<Vec<crate::geom::DVec3>>,
+    /// Whether this is a [`crate::Surfacer`]'s (kept between solves) or a one-shot run's.
+    keep: bool,
 }
 
 impl Kept {
@@ -121,15 +127,34 @@ pub(crate) fn solve_prepared(
         None => &mut one_shot,
     };
     let fresh = slot.is_none();
-    let state = slot.get_or_insert_with(|| Kept { method: make_method(options, &prepared, mesh), iterated: None });
+    let state = slot.get_or_insert_with(|| Kept {
+        method: make_method(options, &prepared, mesh),
+        iterated: None,
+        ops: None,
+        last: None,
+        keep,
+    });
     let iterating = options.iterate.iterations > 0 && options.method == Method::NormalControl;
+    // A re-solve of a Surfacer after the curves changed: from the last surface with the kept
+    // operators and factorisations of its last iteration (issue 31; [`Iterated::resolve`]).
+    let resolved = match (iterating && !fresh, state.last.as_deref(), state.iterated.as_mut()) {
+        (true, Some(last), Some(iterated)) => iterated.resolve(mesh, last, &mut st).transpose()?,
+        _ => None,
+    };
     // The coarse level iterated and the free vertices start on its surface: the fine level's
     // first solve is left out (not after the curves moved: the start is the old surface's),
     // and with it the domain operators. A start whose fine iteration degenerates or diverges
     // (a tube's seam at very few vertices) falls back to the fine level's own first solve.
     let from_coarse_start = iterating && fresh && prepared.coarse.is_some();
-    let ops = if from_coarse_start { None } else { Some(timed(&mut st.operators, || domain_operators(mesh))?) };
-    let mut from_coarse = None;
+    let ops = if from_coarse_start || resolved.is_some() {
+        None
+    } else {
+        match state.ops.take() {
+            Some(ops) => Some(ops),
+            None => Some(timed(&mut st.operators, || domain_operators(mesh))?),
+        }
+    };
+    let mut from_coarse = resolved;
     if from_coarse_start {
         let start = MethodResult { positions: mesh.positions.clone(), propagated_normals: None, guide_curvature: None };
         let (r, report) = iterate(options, &prepared, start, state, &mut st, progress, true)?;
@@ -152,7 +177,8 @@ pub(crate) fn solve_prepared(
             None => timed(&mut st.operators, || domain_operators(mesh))?,
         };
         result = state.method.solve(mesh, &ops, &mut st)?;
-        drop(ops);
+        // A Surfacer's next solve reuses them (they depend on the mesh only).
+        state.ops = keep.then_some(ops);
         if iterating {
             progress("first solve", st.operators + st.factor + st.solve, options.method.name());
         }
@@ -177,6 +203,9 @@ pub(crate) fn solve_prepared(
             Stop::Converged | Stop::MaxIterations => {}
         }
         iteration_report = (report.updates, Some(report.stop));
+    }
+    if keep {
+        state.last = Some(result.positions.clone());
     }
     if let Some(s) = seams {
         result.positions = s.merge(&result.positions);
@@ -224,6 +253,7 @@ fn iterate(
     };
     let iterated = state.iterated.get_or_insert_with(|| Iterated::new(params));
     iterated.params = params;
+    iterated.keep_operators = state.keep;
     let clock = Instant::now();
     iterated.run_reporting(mesh, result, st, &mut |k, of, update| {
         progress("iteration", seconds_since(clock), &format!("{k} of at most {of}, largest move {update:.2e}"));

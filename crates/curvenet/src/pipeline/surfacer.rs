@@ -7,10 +7,20 @@
 //! the mesh and its domain operators only, not on the curve values (\[CG\] eq. 1–3: the normals
 //! and positions enter the right-hand sides; for `cauchy` the ghost vertices), so after
 //! [`Surfacer::update_normals`] or [`Surfacer::update_points`] a solve costs right-hand sides
-//! and triangular solves — for every method ([`crate::methods::SurfacingMethod`]). With
-//! `iterations` > 0 the 3D iterations refactorise their systems (their operators follow the
-//! surface), reusing the symbolic analysis; the `fast` preset (no iteration) is the
-//! interactive setting.
+//! and triangular solves — for every method ([`crate::methods::SurfacingMethod`]); the
+//! operators of the patches' domains are kept too.
+//!
+//! With `iterations` > 0 (the default) a re-solve starts on the last surface, its free
+//! vertices moved by the biharmonic extension of the curve vertices' moves, and runs one 3D
+//! iteration's steps with the operators and factorisations of the last iteration (issue 31):
+//! no assembly, no factorisation. Those operators were built on an earlier surface; rebuilding
+//! them on the start (a numeric refactorisation) gave the same distances to a fresh solve
+//! (saddle rim lifted by 3.5 spacings: 0.083 against 0.082 spacing) at a factorisation's cost.
+//! One such iteration leaves the surface within about 0.1 spacing of a fresh solve on the same
+//! mesh; each further [`Surfacer::solve`] without an update runs another and comes closer
+//! (0.03–0.05 after the second; `pipeline::surfacer` tests). Measured at 20k vertices
+//! (`cargo bench -p curvenet --bench resolve`, `bench/resolve.py`; docs/performance.md): a
+//! re-solve costs about a quarter of a fresh default run and a third of a fresh `fast` one.
 //!
 //! The mesh is kept as built with the first curves: with planar patching the projection planes
 //! follow the cycles' mean normals, so a run from scratch with the new values may triangulate
@@ -97,7 +107,8 @@ impl Surfacer {
     }
 
     /// Surfaces the network with the current curve values. The first call factorises; later
-    /// ones reuse the method's factorisations. The statistics' timings of the first solve
+    /// ones reuse the method's factorisations (with the 3D iterations: one iteration from the
+    /// last surface, see the module documentation). The statistics' timings of the first solve
     /// include the preparation; later ones only the solve.
     pub fn solve(&mut self) -> Result<Surface> {
         let base = if self.solves == 0 { self.prepared.timings } else { Timings::default() };
