@@ -18,6 +18,7 @@ mod kernels;
 pub mod lu;
 pub mod memory;
 pub mod ordering;
+pub mod pcg;
 pub mod sparse;
 pub mod system;
 pub mod timing;
