@@ -9,8 +9,9 @@
 //! that coarse surface's `Q_c`, factorised, and the prolongation `P` of barycentric weights of
 //! each fine vertex's closest point on it (curve corners dropped: fixed on both levels).
 //!
-//! Options (after `--`): `--sizes A,B,..` (default 10000,40000,160000), network names
-//! (default `sphere torus`).
+//! Options (after `--`): `--sizes A,B,..` (default 10000,40000,160000), `--default-surfaces`
+//! (the fine and coarse surfaces from default runs, 3D-iterated, instead of `fast` ones),
+//! network names (default `sphere torus`).
 
 use curvenet::geom::distance::MeshDistance;
 use curvenet::geom::DVec3;
@@ -77,11 +78,14 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).filter(|a| a != "--bench").collect();
     let mut sizes = vec![10_000, 40_000, 160_000];
     let mut names = Vec::new();
+    let mut surfaces = Options::fast();
     let mut i = 0;
     while i < args.len() {
         if args[i] == "--sizes" {
             sizes = args[i + 1].split(',').map(|s| s.parse().expect("--sizes A,B")).collect();
             i += 1;
+        } else if args[i] == "--default-surfaces" {
+            surfaces = Options::default();
         } else {
             names.push(args[i].clone());
         }
@@ -102,8 +106,8 @@ fn main() {
     for name in &names {
         let net = examples::example(name).expect("unknown example");
         for &n in &sizes {
-            let fine = curvenet::surface(&net, &Options::fast().with_vertices(n)).expect("fine surface").mesh;
-            let coarse = curvenet::surface(&net, &Options::fast().with_vertices(n / 4)).expect("coarse surface").mesh;
+            let fine = curvenet::surface(&net, &surfaces.clone().with_vertices(n)).expect("fine surface").mesh;
+            let coarse = curvenet::surface(&net, &surfaces.clone().with_vertices(n / 4)).expect("coarse surface").mesh;
             let area = curvenet::geom::mesh::surface_area(&fine.faces, &fine.positions);
             let patches = fine.face_patch.iter().max().map_or(1, |m| *m as usize + 1);
             let mu = (0.16 * (area / patches as f64).sqrt()).powi(-4);
@@ -149,7 +153,7 @@ fn main() {
                 coarse.num_vertices()
             );
             for (label, m) in &preconditioners {
-                if free > 50_000 && matches!(*label, "none" | "jacobi") {
+                if (free > 50_000 || surfaces.iterate.iterations > 0) && matches!(*label, "none" | "jacobi") {
                     // Thousands of iterations: measured up to 40k only.
                     continue;
                 }
