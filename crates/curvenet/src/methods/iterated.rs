@@ -346,8 +346,10 @@ impl Iterated {
         let w = fit_weights(&mesh.fit_row_left_out(), &inv_m, params.energy);
         let step = Step { mesh, params, ops, inv_m, w, first, mu };
         let mut start = previous.to_vec();
-        start[..nc].copy_from_slice(&mesh.positions[..nc]);
+        // Hard constraints: the curve vertices at their new places, the free ones moved with
+        // them. (Soft ones keep the last solve's curve vertices, pulled towards the input.)
         if first == nc {
+            start[..nc].copy_from_slice(&mesh.positions[..nc]);
             let moves: Vec<DVec3> = (0..nc).map(|k| mesh.positions[k] - previous[k]).collect();
             let energy = LeastSquares { a: &step.ops.ls, w: &step.inv_m, first };
             let rhs = energy.rhs(None, &known_rows(n, nc, &[&moves]));
