@@ -296,8 +296,12 @@ fn a_densely_sampled_circle_surfaces_in_seconds() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// One OBJ `l` line of 5·10⁵ indices (a densely sampled closed curve without normals): read and
-/// surfaced in seconds (token columns were counted from the line's start: quadratic, 30 s).
+/// One OBJ `l` line of 5·10⁵ indices (a densely sampled closed curve without normals): read in
+/// well under a second (token columns were counted from the line's start: quadratic, 30 s) and
+/// surfaced within the bound. The whole run took 9 s alone and 15.4 s beside this binary's other
+/// tests (CI, 2026-12-05): half of it is consolidation's overdraw scan, which visits every
+/// sample within the band of each one along the dense curve itself (issue 28, item 4) — so the
+/// read stage is what is timed here, from `--stats`.
 #[test]
 fn a_long_polyline_line_is_read_in_linear_time() {
     let dir = scratch("polyline");
@@ -315,10 +319,14 @@ fn a_long_polyline_line_is_read_in_linear_time() {
     let input = dir.join("loop.obj");
     std::fs::write(&input, text).unwrap();
     let out = dir.join("patch.ply");
-    let (o, took) =
-        run_bounded(&["surface", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "-q"], Duration::from_secs(60));
+    let stats = dir.join("stats.json");
+    let args =
+        ["surface", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "-q", "--stats", stats.to_str().unwrap()];
+    let (o, took) = run_bounded(&args, Duration::from_secs(60));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(took < Duration::from_secs(15), "{took:?}");
+    let stats: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let read = stats["timings"]["read"].as_f64().unwrap();
+    assert!(read < 3.0, "reading took {read} s (whole run {took:?})");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
