@@ -76,21 +76,21 @@ fn main() {
     for name in &names {
         let net = examples::example(name).expect("unknown example");
         let fast = Options::fast().with_vertices(vertices);
-        let mut fresh_fast = Vec::new();
-        for _ in 0..runs {
-            let t = Instant::now();
-            curvenet::surface(&net, &fast).expect("surface");
-            fresh_fast.push(t.elapsed().as_secs_f64());
-        }
-        let fresh_fast = median(fresh_fast);
+        // The median time of `runs` fresh runs with `opts`.
+        let fresh_run = |opts: &Options| {
+            median(
+                (0..runs)
+                    .map(|_| {
+                        let t = Instant::now();
+                        curvenet::surface(&net, opts).expect("surface");
+                        t.elapsed().as_secs_f64()
+                    })
+                    .collect(),
+            )
+        };
+        let fresh_fast = fresh_run(&fast);
         for (mode, opts) in [("fast", fast.clone()), ("default", Options::default().with_vertices(vertices))] {
-            let mut fresh = Vec::new();
-            for _ in 0..runs {
-                let t = Instant::now();
-                curvenet::surface(&net, &opts).expect("surface");
-                fresh.push(t.elapsed().as_secs_f64());
-            }
-            let fresh = median(fresh);
+            let fresh = fresh_run(&opts);
             let mut s = Surfacer::new(&net, &opts).expect("surfacer");
             let first = s.solve().expect("first solve");
             let (mut update, mut solve, mut moved) = (Vec::new(), Vec::new(), 0.0f64);

@@ -173,7 +173,20 @@ struct Step<'a> {
     mu: f64,
 }
 
-impl Step<'_> {
+impl<'a> Step<'a> {
+    /// The step on the operators `ops` of a surface: `W` from its areas, the first unknown row
+    /// (hard constraints eliminate the curve vertices; soft ones keep every vertex unknown,
+    /// normals included: the curve normals are then pulled towards the input ones only, with
+    /// the same weight as the positions — sensor normals are noisy too) and the prior's `μ`.
+    fn new(mesh: &'a Mesh, params: &'a IterationParams, ops: Operators, left_out: &[bool]) -> Self {
+        let o = &params.options;
+        let mu = if o.normal_prior > 0.0 { (o.normal_prior * params.patch_size).powi(-4) } else { 0.0 };
+        let first = if params.soft_weight.is_some() { 0 } else { mesh.num_curve };
+        let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
+        let w = fit_weights(left_out, &inv_m, params.energy);
+        Step { mesh, params, ops, inv_m, w, first, mu }
+    }
+
     /// The pull towards a target per row: the soft weight on curve vertices, `μ A_v` elsewhere.
     fn pull(&self, k: usize) -> f64 {
         if k < self.mesh.num_curve {
@@ -277,23 +290,14 @@ impl Iterated {
         t: &mut SolveTimings,
     ) -> Result<(Vec<DVec3>, Vec<DVec3>, Vec<f64>)> {
         let params = &self.params;
-        let nc = mesh.num_curve;
-        let o = &params.options;
-        let mu = if o.normal_prior > 0.0 { (o.normal_prior * params.patch_size).powi(-4) } else { 0.0 };
         let left_out = mesh.fit_row_left_out();
         let closed = !left_out.iter().any(|&b| b);
-        // Hard constraints eliminate the curve vertices; soft ones keep every vertex unknown,
-        // normals included: the curve normals are then pulled towards the input ones only,
-        // with the same weight as the positions (sensor normals are noisy too).
-        let first = if params.soft_weight.is_some() { 0 } else { nc };
         let (step, q) = timed(&mut t.operators, || {
-            let ops = cotan_operators(mesh, Metric::Surface, vk);
-            let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
-            let w = fit_weights(&left_out, &inv_m, params.energy);
-            let step = Step { mesh, params, ops, inv_m, w, first, mu };
-            let q = step.with_prox(product_lower(&step.ops.ls, &step.inv_m, &step.ops.ls, first));
+            let step = Step::new(mesh, params, cotan_operators(mesh, Metric::Surface, vk), &left_out);
+            let q = step.with_prox(product_lower(&step.ops.ls, &step.inv_m, &step.ops.ls, step.first));
             (step, q)
         });
+        let first = step.first;
         let kept = self.systems.take();
         let normals_system = timed(&mut t.factor, || match &kept {
             Some((c, _)) => c.refactor(&q, "iterated propagation system"),
@@ -339,12 +343,9 @@ impl Iterated {
         let ops = self.operators.take()?;
         let params = &self.params;
         let o = &params.options;
-        let first = if params.soft_weight.is_some() { 0 } else { nc };
-        let mu = if o.normal_prior > 0.0 { (o.normal_prior * params.patch_size).powi(-4) } else { 0.0 };
         let clock = crate::solve::timing::Instant::now();
-        let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
-        let w = fit_weights(&mesh.fit_row_left_out(), &inv_m, params.energy);
-        let step = Step { mesh, params, ops, inv_m, w, first, mu };
+        let step = Step::new(mesh, params, ops, &mesh.fit_row_left_out());
+        let first = step.first;
         let mut start = previous.to_vec();
         // Hard constraints: the curve vertices at their new places, the free ones moved with
         // them. (Soft ones keep the last solve's curve vertices, pulled towards the input.)

@@ -3,6 +3,11 @@ use crate::methods::Method;
 use crate::network::examples::example;
 use crate::pipeline::surface;
 
+/// A one-shot solve on `prepared` (nothing kept): what a re-solve is compared with.
+fn fresh_solve(prepared: &Prepared, options: &Options) -> Surface {
+    solve_prepared(std::borrow::Cow::Borrowed(prepared), options, &mut |_, _, _| {}, None, Timings::default()).unwrap()
+}
+
 fn max_distance(a: &[DVec3], b: &[DVec3]) -> f64 {
     assert_eq!(a.len(), b.len());
     a.iter().zip(b).map(|(p, q)| p.distance(*q)).fold(0.0, f64::max)
@@ -31,9 +36,7 @@ fn check(name: &str, options: &Options, curve: usize) {
     let normals = tilted(&network, curve, 0.15);
     s.update_normals(curve, &normals).unwrap();
     let again = s.solve().unwrap();
-    let fresh =
-        solve_prepared(std::borrow::Cow::Borrowed(&s.prepared), options, &mut |_, _, _| {}, None, Timings::default())
-            .unwrap();
+    let fresh = fresh_solve(&s.prepared, options);
     let d = max_distance(&again.mesh.positions, &fresh.mesh.positions);
     assert!(d <= 1e-10, "{name}: re-solve differs from a fresh solve by {d:e}");
     let moved = max_distance(&again.mesh.positions, &first.mesh.positions);
@@ -79,14 +82,7 @@ fn resolve_with_iterations_reuses_the_last_iteration() {
             assert_eq!(r.stats.timings.factor, 0.0, "{name}: a re-solve factorised");
             assert_eq!(r.stats.iterations, 1, "{name}");
         }
-        let fresh = solve_prepared(
-            std::borrow::Cow::Borrowed(&s.prepared),
-            &options,
-            &mut |_, _, _| {},
-            None,
-            Timings::default(),
-        )
-        .unwrap();
+        let fresh = fresh_solve(&s.prepared, &options);
         // Distances to the other surface (the vertices may slide along it), in spacings.
         let spacing = s.prepared.spacing;
         let to_surface = |a: &Surface, b: &Surface| {
@@ -131,14 +127,7 @@ fn every_method_resolves_after_moved_points() {
         assert!(max_distance(&first.mesh.positions, &one_shot.mesh.positions) <= 1e-12, "{name}");
         s.update_points(0, &moved).unwrap();
         let again = s.solve().unwrap();
-        let fresh = solve_prepared(
-            std::borrow::Cow::Borrowed(&s.prepared),
-            &options,
-            &mut |_, _, _| {},
-            None,
-            Timings::default(),
-        )
-        .unwrap();
+        let fresh = fresh_solve(&s.prepared, &options);
         let d = max_distance(&again.mesh.positions, &fresh.mesh.positions);
         assert!(d <= 1e-10, "{name}: re-solve differs from a fresh solve by {d:e}");
         let shift = max_distance(&again.mesh.positions, &first.mesh.positions);
@@ -168,9 +157,7 @@ fn soft_constraints_follow_moved_points() {
     let (valid, _) = net.validated().unwrap();
     assert_eq!(s.prepared.input_spacing, valid.mean_sample_spacing());
     let again = s.solve().unwrap();
-    let fresh =
-        solve_prepared(std::borrow::Cow::Borrowed(&s.prepared), &options, &mut |_, _, _| {}, None, Timings::default())
-            .unwrap();
+    let fresh = fresh_solve(&s.prepared, &options);
     assert!(max_distance(&again.mesh.positions, &fresh.mesh.positions) <= 1e-10);
     assert!(max_distance(&again.mesh.positions, &first.mesh.positions) > 0.05);
 }
