@@ -13,9 +13,9 @@ BIN=target/release/curvenet
 OUT=${OUT:-target/consolidate}
 mkdir -p "$OUT"
 stat() { python3 -c "import json,sys; s=json.load(open('$1')); c=s.get('consolidation') or {}; t=s['timings']
-print('%6d %8.4f %8.4f %6.1f%% %5s %5s %5s %6s' % (s['vertices'], t['consolidate'], t['total'], 100*t['consolidate']/t['total'], c.get('joined'), c.get('merged'), c.get('trimmed'), '%.3f' % s['coverage'] if s.get('coverage') is not None else '-'))"; }
+print('%6d %8.4f %8.4f %6.1f%% %5s %5s %5s %6s' % (s['vertices'], t['consolidate'], t['total'], 100*t['consolidate']/t['total'], '%s+%s' % (c.get('joined'), c.get('crossed')), c.get('merged'), c.get('trimmed'), '%.3f' % s['coverage'] if s.get('coverage') is not None else '-'))"; }
 echo "## raw VR strokes (data/sketches/raw), --vertices 20000"
-printf "%-16s %5s %7s %6s %8s %8s %7s %5s %5s %5s %6s  %s\n" sketch exit samples vert consol total share join merge trim cover error
+printf "%-16s %5s %7s %6s %8s %8s %7s %5s %5s %5s %6s  %s\n" sketch exit samples vert consol total share join+x merge trim cover error
 for f in data/sketches/raw/*.obj; do
   name=$(basename "$f" .obj)
   samples=$(grep -c '^v ' "$f")
@@ -30,7 +30,7 @@ for f in data/sketches/raw/*.obj; do
 done
 echo
 echo "## sections redrawn as strokes (sample --as-drawn $GAP), default options"
-printf "%-12s %6s %4s %5s %7s %6s %8s %8s %7s %5s %5s %5s %6s %10s\n" mesh spacing seed exit samples vert consol total share join merge trim cover rms/diag
+printf "%-12s %6s %4s %5s %7s %6s %8s %8s %7s %5s %5s %5s %6s %10s\n" mesh spacing seed exit samples vert consol total share join+x merge trim cover rms/diag
 for m in bumpy-cube.obj beetle.off fandisk.off; do
   name=${m%.*}
   for spacing in 0.02 0.005 0.001 0.0002; do

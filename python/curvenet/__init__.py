@@ -208,7 +208,7 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
       ``iteration_stop`` (``"converged"``, ``"max-iterations"``, ``"degenerate"``,
       ``"diverging"`` or ``None``), ``iteration_updates`` (list); ``coarse_vertices``,
       ``coarse_iteration_updates`` (the default's coarse level); ``peak_memory_bytes`` (``None``
-      in Python); ``consolidation`` (dict: ``gap``, ``joined``, ``merged``, ``trimmed``, ...,
+      in Python); ``consolidation`` (dict: ``gap``, ``joined``, ``crossed``, ``merged``, ``trimmed``, ...,
       or ``None``); ``inferred_normals`` (dict of the inference's counts, or ``None`` when every
       normal was given); ``coverage`` (share of the strokes' length near the surface, or
       ``None``); ``open_borders`` (loops of open border off the boundary curves: holes, or a
@@ -397,7 +397,7 @@ def consolidate(network, *, gap=None, snap=None):
     positions, hooks and stubs at stroke ends are trimmed; a clean network comes back as
     given. ``gap``: the tolerance (default: from the sketch, 0.5–2 % of its bounding-box
     diagonal). Returns ``(network, report, warnings)``: the report as ``--stats`` writes it
-    under ``consolidation`` (``gap``, ``joined``, ``merged``, ``trimmed``, …) and a list of
+    under ``consolidation`` (``gap``, ``joined``, ``crossed``, ``merged``, ``trimmed``, …) and a list of
     :class:`SurfacingWarning`. ``surface(..., consolidate="off")`` skips the stage.
     """
     given = {"gap": gap, "snap": snap}

@@ -66,13 +66,14 @@ pub fn run(a: &ConsolidateArgs) -> Result<(), Error> {
         let r = &c.report;
         let normals = if a.normals { format!(", normals inferred for {inferred}") } else { String::new() };
         out!(
-            "{}: {} strokes in, {} curves out (gap {:.3e}): {} ends joined, {} overdrawn stretches merged, {} \
-             hooks and stubs trimmed{normals} in {:.3} s",
+            "{}: {} strokes in, {} curves out (gap {:.3e}): {} ends joined, {} crossings met, {} overdrawn \
+             stretches merged, {} hooks and stubs trimmed{normals} in {:.3} s",
             a.output.display(),
             r.curves_in,
             out.curves.len(),
             r.gap,
             r.joined,
+            r.crossed,
             r.merged,
             r.trimmed,
             r.seconds

@@ -94,7 +94,7 @@ pub(crate) fn consolidate(
     let c = crate::topology::consolidate::consolidate(network, &options.consolidate, options.mesh.snap)?;
     let r = &c.report;
     if c.changed() {
-        let detail = format!("{} joined, {} merged, {} trimmed", r.joined, r.merged, r.trimmed);
+        let detail = format!("{} joined, {} crossed, {} merged, {} trimmed", r.joined, r.crossed, r.merged, r.trimmed);
         progress("consolidate", r.seconds, &detail);
     }
     Ok(Some(c))

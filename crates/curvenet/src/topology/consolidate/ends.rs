@@ -95,10 +95,11 @@ pub(super) fn trim_hooks(d: &Dense, pieces: &mut [Piece], gap: f64) -> Vec<(usiz
 }
 
 /// What gap closing did: `(curve, curve joined, where)` per end joined, `(curve, where)` per
-/// stub cut.
+/// stub cut, and how many ends met another stroke as drawn (within the snapping tolerance).
 pub(super) struct Gaps {
     pub(super) joins: Vec<(usize, usize, DVec3)>,
     pub(super) stubs: Vec<(usize, DVec3)>,
+    pub(super) met: usize,
 }
 
 /// Closes the gaps at the free ends of the open `pieces` (see the module documentation):
@@ -106,7 +107,7 @@ pub(super) struct Gaps {
 /// curve `c` are not moved (a crease).
 pub(super) fn close_gaps(d: &Dense, pieces: &mut [Piece], gap: f64, snap: f64, fixed: &[bool]) -> Gaps {
     let mut slots = Slots::new(d.pos.len(), pieces);
-    let mut out = Gaps { joins: Vec::new(), stubs: Vec::new() };
+    let mut out = Gaps { joins: Vec::new(), stubs: Vec::new(), met: 0 };
     for p in 0..pieces.len() {
         for side in 0..2 {
             if pieces[p].closed || pieces[p].joined[side] || fixed[pieces[p].curve] || pieces[p].idx.len() < 2 {
@@ -118,6 +119,7 @@ pub(super) fn close_gaps(d: &Dense, pieces: &mut [Piece], gap: f64, snap: f64, f
             let first = hits[0].map_or(f64::INFINITY, |h| h.dist);
             if first <= snap {
                 pieces[p].joined[side] = true;
+                out.met += 1;
                 continue;
             }
             let best =

@@ -9,6 +9,8 @@
 //! 2. **Jitter** (`ends.rs`): hooks and tiny loops at stroke ends are cut.
 //! 3. **Gaps** (`ends.rs`): an end that stops short of a stroke or overshoots it becomes a
 //!    junction on it (T, X); two ends that nearly meet, a corner (L) or a closed loop.
+//! 4. **Crossings** (`crossings.rs`): two strokes that pass each other at an angle within the
+//!    gap, away from their ends, are moved to meet (an X drawn in the air).
 //!
 //! The strokes are worked on as dense polylines (`dense.rs`: points at most a quarter of the gap
 //! apart, on the input polylines, in one spatial hash): O(n) hash queries of a bounded
@@ -21,6 +23,7 @@
 //! [`MIN_GAP`] and [`MAX_GAP`] of the bounding-box diagonal (and at least twice the snapping
 //! tolerance).
 
+mod crossings;
 mod dense;
 mod ends;
 mod overdraw;
@@ -66,6 +69,8 @@ pub struct Consolidation {
     pub gap: f64,
     /// Stroke ends joined to another stroke (T, X, L junctions, loops closed).
     pub joined: usize,
+    /// Crossings of two strokes' interiors that missed within the gap, moved to meet.
+    pub crossed: usize,
     /// Overdrawn stretches merged into the stroke they run along.
     pub merged: usize,
     /// Hooks, loops and stubs cut from stroke ends, and remnants left out.
@@ -93,7 +98,7 @@ impl Consolidated {
     /// Something was changed.
     pub fn changed(&self) -> bool {
         let r = &self.report;
-        r.joined + r.merged + r.trimmed > 0
+        r.joined + r.crossed + r.merged + r.trimmed > 0
     }
 }
 
@@ -191,15 +196,32 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
     let mut pieces = od.pieces;
     let hooks = ends::trim_hooks(&d, &mut pieces, gap);
     let gaps = ends::close_gaps(&d, &mut pieces, gap, snap, &fixed);
-    if od.merges.is_empty() && od.dropped == 0 && hooks.is_empty() && gaps.joins.is_empty() && gaps.stubs.is_empty() {
+    let junctions: Vec<DVec3> = gaps.joins.iter().map(|j| j.2).collect();
+    let mut moved = od.moved;
+    // Strokes whose ends were drawn onto other strokes (a graph, neatened or drawn with shared
+    // points) meet where they were meant to: their interiors' near misses are left as drawn.
+    let crossings = if gaps.joins.len() > gaps.met {
+        crossings::join_crossings(&mut d, &pieces, gap, snap, &fixed, &junctions, &mut moved)
+    } else {
+        Vec::new()
+    };
+    if od.merges.is_empty()
+        && od.dropped == 0
+        && hooks.is_empty()
+        && gaps.joins.is_empty()
+        && gaps.stubs.is_empty()
+        && crossings.is_empty()
+    {
         return Ok(unchanged(gap));
     }
-    let curves = emit(&d, &net.curves, &pieces, &od.moved);
+    let curves = emit(&d, &net.curves, &pieces, &moved);
     let labels: Vec<String> = crate::network::curve_labels(&net.curves);
-    let warnings = warnings(&labels, &od.merges, &hooks, &gaps, od.dropped, gap);
+    let mut warnings = warnings(&labels, &od.merges, &hooks, &gaps, od.dropped, gap);
+    warnings.extend(crossing_warning(&labels, &crossings, gap));
     let report = Consolidation {
         gap,
         joined: gaps.joins.len(),
+        crossed: crossings.len(),
         merged: od.merges.len(),
         trimmed: hooks.len() + gaps.stubs.len() + od.dropped,
         curves_in: net.curves.len(),
@@ -328,6 +350,27 @@ fn unfold_ends(pts: &mut Vec<DVec3>, nrm: &mut Vec<DVec3>) {
         pts.reverse();
         nrm.reverse();
     }
+}
+
+/// The warning for the crossings made, naming the first few.
+fn crossing_warning(labels: &[String], crossings: &[crossings::Crossing], gap: f64) -> Option<Warning> {
+    let first = crossings.first()?;
+    let shown: Vec<String> = crossings
+        .iter()
+        .take(3)
+        .map(|x| format!("{} and {} at {}", labels[x.curves[0]], labels[x.curves[1]], fmt_point(x.at)))
+        .collect();
+    let more = if crossings.len() > 3 { format!(" and {} more", crossings.len() - 3) } else { String::new() };
+    let widest = crossings.iter().map(|x| x.miss).fold(0.0, f64::max);
+    Some(
+        Warning::new(format!(
+            "consolidation: {} crossing(s) of strokes that passed each other within the gap ({gap:.3e}; the widest \
+             {widest:.3e} apart) were moved to meet: {}{more}",
+            crossings.len(),
+            shown.join("; ")
+        ))
+        .curve(first.curves[0]),
+    )
 }
 
 /// One warning per kind of change, naming the first few places.

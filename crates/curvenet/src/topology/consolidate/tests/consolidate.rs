@@ -131,3 +131,76 @@ fn off_changes_nothing() {
     assert_eq!(c.network, net);
     assert!(!c.changed());
 }
+
+/// The smallest distance between the polylines of two curves (at their vertices).
+fn curves_apart(a: &Curve, b: &Curve) -> f64 {
+    a.points
+        .iter()
+        .map(|&p| distance_to(b, p))
+        .chain(b.points.iter().map(|&p| distance_to(a, p)))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// A raw sketch: a stroke across another's interior, missing it by `miss` in z, and two ends
+/// that stop short of a stroke (so that the sketch is one whose ends float).
+fn crossing_sketch(miss: f64) -> Vec<Curve> {
+    vec![
+        line(DVec3::new(0.0, 0.5, 0.0), DVec3::new(1.0, 0.5, 0.0), 21),
+        line(DVec3::new(0.5, 0.0, miss), DVec3::new(0.5, 1.0, miss), 21),
+        line(DVec3::new(0.0, 0.0, 0.0), DVec3::new(0.0, 0.48, 0.0), 11),
+        line(DVec3::new(1.0, 0.0, 0.0), DVec3::new(1.0, 0.48, 0.0), 11),
+    ]
+}
+
+#[test]
+fn strokes_that_cross_in_the_air_are_moved_to_meet() {
+    let miss = 0.02;
+    let c = run(crossing_sketch(miss), 0.05);
+    assert_eq!(c.report.crossed, 1, "{:?}", c.report);
+    let (a, b) = (&c.network.curves[0], &c.network.curves[1]);
+    assert!(curves_apart(a, b) < 1e-12, "the strokes still miss by {}", curves_apart(a, b));
+    // Each moved by half the miss at the crossing, and not at all two gaps away from it.
+    for (curve, z) in [(a, 0.0), (b, miss)] {
+        let shift = curve.points.iter().map(|p| (p.z - z).abs()).fold(0.0, f64::max);
+        assert!((shift - 0.5 * miss).abs() < 1e-9, "shift {shift}");
+        for p in &curve.points {
+            if p.distance(DVec3::new(0.5, 0.5, 0.0)) > 0.1 + 1e-9 {
+                assert!((p.z - z).abs() < 1e-15, "{p}: moved beyond two gaps of the crossing");
+            }
+        }
+    }
+    assert!(c.warnings.iter().any(|w| w.message.contains("crossing")), "{:?}", c.warnings);
+}
+
+#[test]
+fn strokes_that_pass_beyond_the_gap_or_along_each_other_are_left() {
+    // Beyond the gap: no crossing.
+    let c = run(crossing_sketch(0.06), 0.05);
+    assert_eq!(c.report.crossed, 0, "{:?}", c.report);
+    // At a shallow angle (15°): not a crossing either.
+    let mut curves = crossing_sketch(0.02);
+    let t = 15f64.to_radians();
+    curves[1] = line(
+        DVec3::new(0.5 - 0.5 * t.cos(), 0.5 - 0.5 * t.sin(), 0.02),
+        DVec3::new(0.5 + 0.5 * t.cos(), 0.5 + 0.5 * t.sin(), 0.02),
+        21,
+    );
+    let c = run(curves, 0.05);
+    assert_eq!(c.report.crossed, 0, "{:?}", c.report);
+}
+
+#[test]
+fn a_graph_whose_ends_meet_keeps_its_near_misses() {
+    // The ends lie on the strokes (as in a neatened graph): the near miss is the drawing's.
+    let mut curves = crossing_sketch(0.02);
+    curves[2] = line(DVec3::new(0.0, 0.0, 0.0), DVec3::new(0.0, 0.5, 0.0), 11);
+    curves[3] = line(DVec3::new(1.0, 0.0, 0.0), DVec3::new(1.0, 0.5, 0.0), 11);
+    let net = Network { curves: curves.clone(), snap: None, cycles: None };
+    let c = run(curves, 0.05);
+    assert_eq!(c.report.crossed, 0, "{:?}", c.report);
+    assert!(!c.changed(), "{:?}", c.report);
+    assert_eq!(
+        c.network.curves.iter().map(|c| c.points.clone()).collect::<Vec<_>>(),
+        net.curves.iter().map(|c| c.points.clone()).collect::<Vec<_>>()
+    );
+}
