@@ -55,7 +55,9 @@ fn strokes_with_gaps_overdraw_and_hooks_on_the_sphere_surface_near_the_truth() {
     let (_, _, s) = drawn_example("globe", &Drawn::default(), 0).unwrap();
     let c = s.stats.consolidation.clone().unwrap();
     assert!(c.joined > 0 && c.merged > 0 && c.trimmed > 0, "every defect is met: {c:?}");
-    assert!(passing("globe", &Drawn::default(), 10) >= 9);
+    // Measured: 10 of 10 (9 before consolidation dropped the points a hair's breadth from a
+    // sample, whose chord made a given normal tangent to the curve).
+    assert!(passing("globe", &Drawn::default(), 10) >= 10);
 }
 
 #[test]

@@ -42,7 +42,7 @@ impl Hasher for CellHasher {
 }
 
 /// Input samples closer than this many `h` along to the point before them are not dense points.
-const FINEST: f64 = 0.125;
+pub(super) const FINEST: f64 = 0.125;
 
 type Grid = HashMap<GridCell, Vec<u32>, BuildHasherDefault<CellHasher>>;
 

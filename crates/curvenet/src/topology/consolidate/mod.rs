@@ -315,7 +315,7 @@ fn emit(d: &Dense, input: &[Curve], pieces: &[Piece], moved: &[bool]) -> Vec<Cur
                 nrm.push(d.nrm[last]);
             }
             unfold_ends(&mut pts, &mut nrm);
-            pts.dedup_by(|a, b| a.distance(*b) == 0.0);
+            drop_close(&mut pts, &mut nrm, dense::FINEST * d.h);
             if pts.len() < 2 || (p.closed && pts.len() < 3) {
                 continue;
             }
@@ -332,6 +332,36 @@ fn emit(d: &Dense, input: &[Curve], pieces: &[Piece], moved: &[bool]) -> Vec<Cur
         }
     }
     out
+}
+
+/// Removes the points closer than `min` to the point kept before them (the ends stay): an
+/// averaged or moved point next to an input sample can land a hair's breadth from it, and the
+/// chord between them — a random direction — would be the curve's tangent there (a given
+/// normal along it is refused).
+fn drop_close(pts: &mut Vec<DVec3>, nrm: &mut Vec<DVec3>, min: f64) {
+    let n = pts.len();
+    if n < 3 {
+        pts.dedup_by(|a, b| a.distance(*b) == 0.0);
+        nrm.truncate(pts.len());
+        return;
+    }
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    let mut last = 0;
+    for i in 1..n - 1 {
+        if pts[i].distance(pts[last]) >= min {
+            keep[i] = true;
+            last = i;
+        }
+    }
+    keep[n - 1] = true;
+    if last > 0 && pts[n - 1].distance(pts[last]) < min {
+        keep[last] = false;
+    }
+    let mut flags = keep.iter();
+    pts.retain(|_| flags.next().is_some_and(|&f| f));
+    let mut flags = keep.iter();
+    nrm.retain(|_| flags.next().is_some_and(|&f| f));
 }
 
 /// Removes the samples next to either end where the curve turns back by more than 120° (a

@@ -204,3 +204,15 @@ fn a_graph_whose_ends_meet_keeps_its_near_misses() {
         net.curves.iter().map(|c| c.points.clone()).collect::<Vec<_>>()
     );
 }
+
+#[test]
+fn points_a_hair_apart_are_emitted_once_with_their_normals() {
+    let x = |a: f64, b: f64| DVec3::new(a, b, 0.0);
+    let mut pts = vec![x(0.0, 0.0), x(1.0, 0.0), x(1.0, 1e-6), x(2.0, 0.0), x(2.0 + 1e-6, 0.0)];
+    let mut nrm = vec![DVec3::Z, DVec3::Z, DVec3::X, DVec3::Z, DVec3::Y];
+    drop_close(&mut pts, &mut nrm, 1e-3);
+    // The interior point next to a kept one goes; at the end, the end stays and the point
+    // before it goes.
+    assert_eq!(pts, vec![x(0.0, 0.0), x(1.0, 0.0), x(2.0 + 1e-6, 0.0)]);
+    assert_eq!(nrm, vec![DVec3::Z, DVec3::Z, DVec3::Y]);
+}
