@@ -757,6 +757,8 @@ fn read_mesh<'py>(py: Python<'py>, path: &str) -> PyResult<(Points<'py>, Indices
 
 #[pymodule]
 fn _curvenet(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // Under `ulimit -v`, as many threads as the matrix products' workspaces leave room for.
+    curvenet::solve::memory::fit_thread_pool_to_address_space();
     m.add_class::<PyNetwork>()?;
     m.add_class::<PyOptions>()?;
     m.add_class::<PySurfacer>()?;

@@ -103,7 +103,11 @@ pub fn run(a: &BatchArgs) -> Result<(), Error> {
         head.push('\n');
     }
     report.write_all(head.as_bytes()).map_err(|e| Error::io(&report_path, e))?;
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    // Under an address-space limit, no more threads than the matrix products' workspaces fit.
+    let cores = match curvenet::solve::memory::address_space_limit() {
+        Some(limit) => curvenet::solve::memory::threads_within(limit),
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
     let workers = a.jobs.unwrap_or(cores).clamp(1, todo.len().max(1));
     let threads = (cores / workers).max(1);
     let mut base = base;

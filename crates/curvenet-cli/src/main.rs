@@ -156,6 +156,8 @@ fn read_network(path: &std::path::Path) -> Result<curvenet::Network, curvenet::E
 
 fn main() -> ExitCode {
     clean_up_on_signals();
+    // Under `ulimit -v`, as many threads as the matrix products' workspaces leave room for.
+    curvenet::solve::memory::fit_thread_pool_to_address_space();
     let cli = Cli::parse();
     // The global `-q` handed to the subcommands that print progress or a summary.
     macro_rules! quietly {
