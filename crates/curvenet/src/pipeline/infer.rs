@@ -621,7 +621,16 @@ fn across_chords(curve: &mut crate::Curve) {
         chords.sort_by(|a, b| b.dot(n).abs().total_cmp(&a.dot(n).abs()));
         for t in chords {
             if n.dot(t).abs() > 0.9 {
-                let across = (n - t * n.dot(t)).normalize_or_zero();
+                // What is left of a normal within 25° of the chord points anywhere across it:
+                // taken from the neighbours' normals instead where they are across it (a node
+                // of many curves may get a normal tangent to one of them, as the neatened
+                // flower's valence-11 centres do to a petal's outline).
+                let prev = if i > 0 { i - 1 } else { m - 1 };
+                let next = if i + 1 < m { i + 1 } else { 0 };
+                let near = |j: usize| (curve.closed || j.abs_diff(i) == 1).then(|| curve.normals[j]);
+                let sum: DVec3 = [near(prev), near(next)].into_iter().flatten().sum();
+                let from = if (sum - t * sum.dot(t)).length() > 0.5 * sum.length() { sum } else { n };
+                let across = (from - t * from.dot(t)).normalize_or_zero();
                 if across != DVec3::ZERO {
                     n = across;
                 }

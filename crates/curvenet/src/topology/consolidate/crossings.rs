@@ -29,6 +29,9 @@ pub(super) const MIN_DEGREES: f64 = 30.0;
 /// The shift of a crossing falls to zero this many gaps along each stroke.
 const REACH: f64 = 2.0;
 
+/// At most this many steps down to a closest approach (16 gaps of dense points).
+const MAX_DESCENT: usize = 64;
+
 /// One crossing made: the two curves, where they now meet, and how far apart they passed.
 pub(super) struct Crossing {
     pub(super) curves: [usize; 2],
@@ -78,7 +81,8 @@ pub(super) fn join_crossings(
     let cos_min = MIN_DEGREES.to_radians().cos();
     let crossing = |i: usize, j: usize| {
         let far_along = d.curve[i] != d.curve[j] || d.along(i, j) > 4.0 * gap;
-        far_along && d.tan[i].dot(d.tan[j]).abs() <= cos_min
+        let (ti, tj) = (d.tan[i], d.tan[j]);
+        far_along && ti != DVec3::ZERO && tj != DVec3::ZERO && ti.dot(tj).abs() <= cos_min
     };
     // Every fourth point asks (at most a gap apart along the stroke: a crossing that misses
     // by the gap is seen from the nearest of them at most 1.12 gaps away); the pair it finds
@@ -161,10 +165,20 @@ pub(super) fn join_crossings(
             (false, true) => d.pos[j],
             (false, false) => d.pos[i].lerp(d.pos[j], 0.5),
         };
+        // Each stroke's bump, unless it would be steeper than one in two (a point that may
+        // not move right beside the crossing): then the crossing is left as drawn.
+        let mut bumps = Vec::new();
         for (x, p) in [(i, pair.pi), (j, pair.pj)] {
             if !pinned[x] {
-                shift(d, &pieces[p], slot[x].map_or(0, |s| s.1), target - d.pos[x], REACH * gap, &pinned, moved);
+                let sides = bump(d, &pieces[p], slot[x].map_or(0, |s| s.1), REACH * gap, &pinned);
+                bumps.push((x, target - d.pos[x], sides));
             }
+        }
+        if bumps.iter().any(|(_, delta, sides)| sides.iter().any(|side| delta.length() > 0.5 * side.1)) {
+            continue;
+        }
+        for (x, delta, sides) in bumps {
+            apply(d, x, delta, sides, moved);
         }
         pinned[i] = true;
         pinned[j] = true;
@@ -188,7 +202,9 @@ fn descend(d: &Dense, pieces: &[Piece], slot: &[Option<(usize, usize)>], mut pai
             (0..m).contains(&t).then(|| piece.idx[t as usize])
         }
     };
-    loop {
+    // At most a few gaps' worth of steps (a stroke winding about another would otherwise walk
+    // along it).
+    for _ in 0..MAX_DESCENT {
         let mut next = pair;
         for (a, b) in [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (-1, 1), (1, -1), (1, 1)] {
             let (Some(i), Some(j)) = (step(pair.i, a), step(pair.j, b)) else { continue };
@@ -202,6 +218,7 @@ fn descend(d: &Dense, pieces: &[Piece], slot: &[Option<(usize, usize)>], mut pai
         }
         pair = next;
     }
+    pair
 }
 
 /// The point of `piece` that may not move nearest along it to its `k`-th point, within `reach`
@@ -236,10 +253,13 @@ fn settled_near(d: &Dense, piece: &Piece, k: usize, reach: f64, pinned: &[bool])
     best.map_or(centre, |b| b.1)
 }
 
-/// Moves point `k` of `piece` by `delta`, and its neighbours along the piece by a raised cosine
-/// of their distance along it that is zero at `reach` — or, on either side, at the first point
-/// that may not move (or the piece's end where it is a junction), if that comes sooner.
-fn shift(d: &mut Dense, piece: &Piece, k: usize, delta: DVec3, reach: f64, pinned: &[bool], moved: &mut [bool]) {
+/// One side of a bump: the points with their distance along the stroke, and where it ends.
+type Side = (Vec<(usize, f64)>, f64);
+
+/// The bump centred on point `k` of `piece`: on either side the points within `reach` along it,
+/// stopping short of the first point that may not move (or the piece's end where it is a
+/// junction) if that comes sooner.
+fn bump(d: &Dense, piece: &Piece, k: usize, reach: f64, pinned: &[bool]) -> Vec<Side> {
     let m = piece.idx.len();
     let at = |t: isize| -> Option<usize> {
         if piece.closed {
@@ -251,37 +271,52 @@ fn shift(d: &mut Dense, piece: &Piece, k: usize, delta: DVec3, reach: f64, pinne
         }
     };
     let centre = piece.idx[k];
-    // Per side: the points within reach, and the reach on that side.
-    let mut sides: Vec<(Vec<usize>, f64)> = Vec::new();
+    // Distances are summed along the piece (a loop the gap stage closed has no wrap-around arc
+    // length of its own); on a loop each side goes at most halfway round.
+    let steps = if piece.closed { (m - 1) / 2 } else { m };
+    let round =
+        if piece.closed { piece.length(d) + d.pos[piece.idx[m - 1]].distance(d.pos[piece.idx[0]]) } else { 0.0 };
+    // Per side: the points within reach with their distance along, and the reach on that side.
+    let mut sides: Vec<Side> = Vec::new();
     for step in [-1isize, 1] {
         let mut pts = Vec::new();
-        let mut limit = reach;
+        let mut limit = if piece.closed { reach.min(0.5 * round) } else { reach };
         let mut t = k as isize + step;
-        while let Some(j) = at(t) {
-            let s = d.along(centre, j);
-            if j == centre || s >= reach || pts.len() >= m {
+        let (mut s, mut prev) = (0.0, centre);
+        let mut ran_off = true;
+        for _ in 0..steps {
+            let Some(j) = at(t) else { break };
+            s += d.pos[prev].distance(d.pos[j]);
+            if s >= limit {
+                ran_off = false;
                 break;
             }
             if pinned[j] {
                 limit = s;
+                ran_off = false;
                 break;
             }
-            pts.push(j);
+            pts.push((j, s));
+            prev = j;
             t += step;
         }
         // An open piece's end that is a junction stays where it is.
         let end = if step < 0 { 0 } else { 1 };
-        if at(t).is_none() && piece.ends[end].is_some() {
-            let last = if step < 0 { piece.idx[0] } else { piece.idx[m - 1] };
-            limit = limit.min(d.along(centre, last) + d.h);
+        if !piece.closed && ran_off && at(t).is_none() && piece.ends[end].is_some() {
+            limit = limit.min(s + d.h);
         }
         sides.push((pts, limit));
     }
+    sides
+}
+
+/// Moves dense point `centre` by `delta` and the points of its bump's `sides` by a raised
+/// cosine of their distance along the stroke, zero where each side ends.
+fn apply(d: &mut Dense, centre: usize, delta: DVec3, sides: Vec<Side>, moved: &mut [bool]) {
     d.pos[centre] += delta;
     moved[centre] = true;
     for (pts, limit) in sides {
-        for j in pts {
-            let s = d.along(centre, j);
+        for (j, s) in pts {
             if s >= limit {
                 break;
             }

@@ -11,7 +11,7 @@
 
 use crate::geom::{grid_cell, DVec3, GridCell};
 use crate::network::Curve;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::hash::{BuildHasherDefault, Hasher};
 
 /// A multiply–xor hash of grid cells (three `i64`s): the hash's lookups are most of
@@ -45,6 +45,26 @@ impl Hasher for CellHasher {
 pub(super) const FINEST: f64 = 0.125;
 
 type Grid = HashMap<GridCell, Vec<u32>, BuildHasherDefault<CellHasher>>;
+
+/// A position's bits (an exact key).
+fn bits(p: DVec3) -> [u64; 3] {
+    [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]
+}
+
+/// The sample positions that are samples of two curves or more.
+fn shared_samples(curves: &[Curve]) -> HashSet<[u64; 3]> {
+    let mut first: HashMap<[u64; 3], usize> = HashMap::new();
+    let mut out = HashSet::new();
+    for (c, curve) in curves.iter().enumerate() {
+        for &p in &curve.points {
+            let owner = *first.entry(bits(p)).or_insert(c);
+            if owner != c {
+                out.insert(bits(p));
+            }
+        }
+    }
+    out
+}
 
 /// The dense points of every curve of a network, and the hash that finds them.
 pub(super) struct Dense {
@@ -90,6 +110,7 @@ impl Dense {
             cell,
             grid: Grid::default(),
         };
+        let mut shared: Option<HashSet<[u64; 3]>> = None;
         for (c, curve) in curves.iter().enumerate() {
             let start = d.pos.len();
             let p = &curve.points;
@@ -113,7 +134,12 @@ impl Dense {
                 let pieces = ((len / h).ceil() as usize).max(1);
                 for k in 0..pieces {
                     let s = k as f64 / pieces as f64;
-                    if k == 0 && arc - last < FINEST * h {
+                    // (A vertex shared with another curve is always kept: overdraw tells a
+                    // neatened graph's shallow junction by it.)
+                    if k == 0
+                        && arc - last < FINEST * h
+                        && !shared.get_or_insert_with(|| shared_samples(curves)).contains(&bits(a))
+                    {
                         continue;
                     }
                     last = arc + s * len;

@@ -216,3 +216,27 @@ fn points_a_hair_apart_are_emitted_once_with_their_normals() {
     assert_eq!(pts, vec![x(0.0, 0.0), x(1.0, 0.0), x(2.0 + 1e-6, 0.0)]);
     assert_eq!(nrm, vec![DVec3::Z, DVec3::Z, DVec3::Y]);
 }
+
+#[test]
+fn a_small_loop_crossed_by_a_stroke_is_moved_once() {
+    // A loop shorter than the bump's two sides (4 gaps round) missing a stroke by a fifth of
+    // the gap: each of its points moves by at most half the miss (no point shifted from both
+    // sides at once).
+    let (r, miss) = (0.03, 0.01);
+    let loop_pts: Vec<DVec3> = (0..24)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / 24.0 - std::f64::consts::FRAC_PI_2;
+            DVec3::new(0.5, 0.5 + r * t.cos(), r - miss + r * t.sin())
+        })
+        .collect();
+    let mut curves = crossing_sketch(0.0);
+    curves[1] = Curve { points: loop_pts.clone(), closed: true, ..Default::default() };
+    let c = run(curves, 0.05);
+    assert_eq!(c.report.crossed, 1, "{:?}", c.report);
+    let moved = &c.network.curves[1];
+    assert!(curves_apart(&c.network.curves[0], moved) < 1e-12);
+    for p in &moved.points {
+        let before = loop_pts.iter().map(|q| q.distance(*p)).fold(f64::INFINITY, f64::min);
+        assert!(before <= 0.5 * miss + 1e-9, "{p} moved {before} from the loop");
+    }
+}
