@@ -133,3 +133,28 @@ fn surfacer_reports_the_inference_on_its_first_solve() {
     assert_eq!(first.stats.inferred_normals.as_ref().map(|r| r.curves), Some(3));
     assert!(s.solve().unwrap().stats.inferred_normals.is_none());
 }
+
+/// A normal within 25° of a chord is taken across it: from its neighbours' normals where they
+/// are across (a node normal tangent to one of its curves), not from what is left of itself,
+/// which points anywhere.
+#[test]
+fn a_normal_along_a_chord_is_taken_across_it_from_its_neighbours() {
+    let points: Vec<DVec3> = (0..8)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / 8.0;
+            DVec3::new(t.cos(), t.sin(), 0.0)
+        })
+        .collect();
+    let mut curve = crate::Curve { points, closed: true, ..Default::default() };
+    curve.normals = vec![DVec3::Z; 8];
+    // Sample 0's normal nearly along the chord to sample 1, tipped a little below the plane: its
+    // own rest across the chord points down, its neighbours' up.
+    let chord = (curve.points[1] - curve.points[0]).normalize();
+    curve.normals[0] = (chord - 0.2 * DVec3::Z).normalize();
+    across_chords(&mut curve);
+    let n = curve.normals[0];
+    assert!(n.dot(chord).abs() < 1e-9, "{n}");
+    assert!(n.dot(DVec3::Z) > 0.9, "{n} not the neighbours' side");
+    // The others were across already and are kept.
+    assert!(curve.normals[1..].iter().all(|&n| n == DVec3::Z));
+}
