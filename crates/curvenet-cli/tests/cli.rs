@@ -634,6 +634,16 @@ fn raw_strokes_are_consolidated_and_written_and_off_turns_it_off() {
     assert!(warned > 1 && summary.ends_with(&format!(", {warned} warnings (above)")), "{warned}: {summary}");
     let o = run(&["surface", raw, "-o", ply.to_str().unwrap(), "-q", "--consolidate", "off"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    // A curve given twice, sample for sample, is merged into one (a warning names it); without
+    // the stage it is refused as overlapping.
+    let twice = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/bad/coincident-curves.json");
+    let o = run(&["surface", twice, "-o", ply.to_str().unwrap(), "-q", "--stats", stats.to_str().unwrap()]);
+    assert!(o.status.success() && stderr(&o).contains("\"equator again\""), "{}", stderr(&o));
+    let s: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(s["consolidation"]["merged"], 1, "{s}");
+    let o = run(&["surface", twice, "-o", ply.to_str().unwrap(), "-q", "--consolidate", "off"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("overlap"), "{}", stderr(&o));
 }
 
 /// `curvenet cycles` writes the network with one line per patch's cycle; a line deleted leaves

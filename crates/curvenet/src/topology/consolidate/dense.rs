@@ -32,6 +32,10 @@ impl Hasher for CellHasher {
         }
     }
 
+    fn write_usize(&mut self, x: usize) {
+        self.write_u64(x as u64);
+    }
+
     fn write_i64(&mut self, x: i64) {
         self.write_u64(x as u64);
     }
@@ -52,9 +56,11 @@ fn bits(p: DVec3) -> [u64; 3] {
 }
 
 /// The sample positions that are samples of two curves or more.
-fn shared_samples(curves: &[Curve]) -> HashSet<[u64; 3]> {
-    let mut first: HashMap<[u64; 3], usize> = HashMap::new();
-    let mut out = HashSet::new();
+fn shared_samples(curves: &[Curve]) -> HashSet<[u64; 3], BuildHasherDefault<CellHasher>> {
+    let samples = curves.iter().map(|c| c.points.len()).sum();
+    let mut first: HashMap<[u64; 3], usize, BuildHasherDefault<CellHasher>> =
+        HashMap::with_capacity_and_hasher(samples, Default::default());
+    let mut out = HashSet::default();
     for (c, curve) in curves.iter().enumerate() {
         for &p in &curve.points {
             let owner = *first.entry(bits(p)).or_insert(c);
@@ -110,7 +116,19 @@ impl Dense {
             cell,
             grid: Grid::default(),
         };
-        let mut shared: Option<HashSet<[u64; 3]>> = None;
+        // At most every sample and a point every `h` between them (the caller bounds the
+        // latter): reserved at once rather than grown by copying.
+        let samples: usize = curves.iter().map(|c| c.points.len()).sum();
+        let between =
+            curves.iter().map(|c| c.points.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>()).sum::<f64>() / h;
+        let room = samples + (between.ceil() as usize).min(16 * samples + 1_000_000);
+        for v in [&mut d.pos, &mut d.nrm] {
+            v.reserve(room);
+        }
+        d.arc.reserve(room);
+        d.curve.reserve(room);
+        d.sample.reserve(room);
+        let mut shared: Option<HashSet<[u64; 3], BuildHasherDefault<CellHasher>>> = None;
         for (c, curve) in curves.iter().enumerate() {
             let start = d.pos.len();
             let p = &curve.points;

@@ -94,6 +94,71 @@ pub(super) fn trim_hooks(d: &Dense, pieces: &mut [Piece], gap: f64) -> Vec<(usiz
     out
 }
 
+/// Cuts the retraced ends of the open pieces that overdraw left (the way back deviates from the
+/// way out by more than its band, or at more than its angle, as where a coarsely sampled stroke
+/// is retraced across a corner it turned): where the stroke turns back by more than 120° (over
+/// half a gap either side) and everything after the turn, up to half the piece, stays within a
+/// gap of the piece before it, the turn becomes the end — the stroke's one pass is kept.
+/// Returns `(curve, where)` per end cut.
+pub(super) fn trim_retraces(d: &Dense, pieces: &mut [Piece], gap: f64) -> Vec<(usize, DVec3)> {
+    let mut out = Vec::new();
+    for piece in pieces.iter_mut() {
+        // Open pieces along their curve in order (every dense point of a stretch): the rest of
+        // the piece is an index range.
+        let ordered = piece.idx.windows(2).all(|w| w[1] == w[0] + 1);
+        if piece.closed || piece.idx.len() < 8 || !ordered {
+            continue;
+        }
+        let length = piece.length(d);
+        for side in 0..2 {
+            let seq: Vec<usize> = if side == 0 { piece.idx.clone() } else { piece.idx.iter().rev().copied().collect() };
+            let Some(k) = retrace_turn(d, &seq, gap, 0.5 * length) else { continue };
+            out.push((piece.curve, d.pos[seq[0]]));
+            if side == 0 {
+                piece.idx.drain(..k);
+            } else {
+                let len = piece.idx.len();
+                piece.idx.truncate(len - k);
+            }
+            piece.changed = true;
+        }
+    }
+    out
+}
+
+/// The innermost turn `k` of `seq` (an end first, within `reach` of it along) after which the
+/// end's arm `seq[..k]` stays within `gap` of `seq[k..]`; `None` without one.
+fn retrace_turn(d: &Dense, seq: &[usize], gap: f64, reach: f64) -> Option<usize> {
+    let a = ((0.5 * gap / d.h).ceil() as usize).max(1);
+    let (lo, hi) = (seq[0].min(seq[seq.len() - 1]), seq[0].max(seq[seq.len() - 1]));
+    let mut best = None;
+    for k in a..seq.len().saturating_sub(a) {
+        if d.along(seq[0], seq[k]) > reach {
+            break;
+        }
+        let back = (d.pos[seq[k - a]] - d.pos[seq[k]]).normalize_or_zero();
+        let on = (d.pos[seq[k + a]] - d.pos[seq[k]]).normalize_or_zero();
+        // Back and on both leave the turn the same way (within 60°): a hairpin.
+        if back.dot(on) < 0.5 || d.along(seq[0], seq[k]) < gap {
+            continue;
+        }
+        // Every point of the arm has a point of the rest within the gap.
+        let rest = |j: usize| {
+            (lo..=hi).contains(&j)
+                && (j as isize - seq[k] as isize).signum() == (seq[seq.len() - 1] as isize - seq[k] as isize).signum()
+        };
+        let covered = seq[..k].iter().all(|&i| {
+            let mut hit = false;
+            d.near(d.pos[i], gap, |j| hit |= j == seq[k] || rest(j));
+            hit
+        });
+        if covered {
+            best = Some(k);
+        }
+    }
+    best
+}
+
 /// What gap closing did: `(curve, curve joined, where)` per end joined, `(curve, where)` per
 /// stub cut, and how many ends met another stroke as drawn (within the snapping tolerance).
 pub(super) struct Gaps {

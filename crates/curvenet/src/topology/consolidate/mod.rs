@@ -194,7 +194,8 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
     let fixed: Vec<bool> = net.curves.iter().map(|c| c.is_crease() || c.boundary).collect();
     let od = overdraw::merge_overdraw(&mut d, OVERDRAW_BAND * gap, gap, snap, &fixed);
     let mut pieces = od.pieces;
-    let hooks = ends::trim_hooks(&d, &mut pieces, gap);
+    let mut hooks = ends::trim_hooks(&d, &mut pieces, gap);
+    hooks.extend(ends::trim_retraces(&d, &mut pieces, gap));
     let gaps = ends::close_gaps(&d, &mut pieces, gap, snap, &fixed);
     let junctions: Vec<DVec3> = gaps.joins.iter().map(|j| j.2).collect();
     let mut moved = od.moved;

@@ -26,6 +26,10 @@ pub(super) const CROSSING_DEGREES: f64 = 8.0;
 /// A covered run at least this many bands long is overdraw (shorter ones: a shallow crossing).
 pub(super) const MIN_RUN: f64 = 4.0;
 
+/// A covered run sharing this many input samples with the curves covering it is a duplicate
+/// stroke (a junction of a graph shares one: its node).
+pub(super) const DUPLICATE_SAMPLES: usize = 3;
+
 /// One overdrawn stretch: the curve it was on, the curve it was merged into, where, and its
 /// length.
 pub(super) struct Merge {
@@ -122,10 +126,12 @@ pub(super) fn merge_overdraw(d: &mut Dense, band: f64, gap: f64, snap: f64, fixe
         }
         for (a, b) in kept_runs(d, c, &kept) {
             let idx = run_indices(d, a, b);
-            // A remnant beside removed overdraw: short, or folded within a small extent (the
-            // turn of a retrace).
+            // A remnant beside removed overdraw: short, folded within a small extent (the
+            // turn of a retrace), or lying within the gap of kept strokes all along (the rest
+            // of a retrace that strayed further from the way out than the band).
             let extent = idx.iter().map(|&i| d.pos[i].distance(d.pos[idx[0]])).fold(0.0, f64::max);
-            if run_length(d, a, b) < 2.0 * gap || extent < 1.5 * gap || idx.len() < 2 {
+            let short = run_length(d, a, b) < 2.0 * gap || extent < 1.5 * gap || idx.len() < 2;
+            if short || lies_along(d, &idx, gap, &kept) {
                 idx.iter().for_each(|&i| kept[i] = false);
                 dropped += 1;
                 continue;
@@ -135,6 +141,19 @@ pub(super) fn merge_overdraw(d: &mut Dense, band: f64, gap: f64, snap: f64, fixe
     }
     let moved = average_into(d, &cover, &kept);
     Overdraw { pieces: pieces_of.into_iter().flatten().collect(), merges, dropped, moved }
+}
+
+/// Every point of `idx` has a kept point other than those of `idx` within `gap`.
+fn lies_along(d: &Dense, idx: &[usize], gap: f64, kept: &[bool]) -> bool {
+    // (A closed curve's run may wrap through its first point: not a range.)
+    let mut sorted = idx.to_vec();
+    sorted.sort_unstable();
+    let mine = |j: usize| sorted.binary_search(&j).is_ok();
+    idx.iter().all(|&i| {
+        let mut hit = false;
+        d.near(d.pos[i], gap, |j| hit |= kept[j] && !mine(j));
+        hit
+    })
 }
 
 /// A covered run that passes from one side of the covering stroke to the other at an angle —
@@ -164,20 +183,33 @@ fn crosses(d: &Dense, idx: &[usize], cover: &[Option<usize>], length: f64, band:
 
 /// A covered run that shares a point with a curve covering it — a vertex of both, as where
 /// the curves of a neatened graph leave their node at a shallow angle — is a junction, not
-/// overdraw: graphs with shared crossings are left as they are.
+/// overdraw: graphs with shared crossings are left as they are. A run that shares
+/// [`DUPLICATE_SAMPLES`] samples or more is a stroke drawn again sample for sample (an exact
+/// duplicate): overdraw.
 fn shares_a_point(d: &Dense, idx: &[usize], cover: &[Option<usize>], band: f64) -> bool {
     let exact = 1e-9 * band;
     let ends = [idx[0], idx[idx.len() - 1]];
-    let around = ends.iter().flat_map(|&i| [d.prev(i), Some(i), d.next(i)]).flatten();
+    let mut around: Vec<usize> = ends.iter().flat_map(|&i| [d.prev(i), Some(i), d.next(i)]).flatten().collect();
+    around.retain(|i| !idx.contains(i));
     let mut covering: Vec<u32> = idx.iter().filter_map(|&i| cover[i]).map(|j| d.curve[j]).collect();
     covering.sort_unstable();
     covering.dedup();
     // A shared vertex is an input sample of both curves.
-    idx.iter().copied().chain(around).filter(|&i| d.sample[i]).any(|i| {
-        let mut shared = false;
-        d.near(d.pos[i], exact, |j| shared |= d.curve[j] != d.curve[i] && covering.binary_search(&d.curve[j]).is_ok());
-        shared
-    })
+    let shared = idx
+        .iter()
+        .copied()
+        .chain(around)
+        .filter(|&i| d.sample[i])
+        .filter(|&i| {
+            let mut shared = false;
+            d.near(d.pos[i], exact, |j| {
+                shared |= d.curve[j] != d.curve[i] && covering.binary_search(&d.curve[j]).is_ok()
+            });
+            shared
+        })
+        .take(DUPLICATE_SAMPLES)
+        .count();
+    shared > 0 && shared < DUPLICATE_SAMPLES
 }
 
 /// The most frequent value of a sorted list.

@@ -240,3 +240,46 @@ fn a_small_loop_crossed_by_a_stroke_is_moved_once() {
         assert!(before <= 0.5 * miss + 1e-9, "{p} moved {before} from the loop");
     }
 }
+
+#[test]
+fn an_exact_duplicate_is_overdraw_and_a_shared_node_is_not() {
+    // A short stroke drawn three times sample for sample (the input shares every sample), near a
+    // crossing stroke: one curve is left of the three.
+    let a = line(DVec3::new(0.2, 0.0, 0.0), DVec3::new(0.4, 0.0, 0.0), 6);
+    let cross = line(DVec3::new(0.3, -0.5, 0.0), DVec3::new(0.3, 0.5, 0.0), 11);
+    let c = run(vec![a.clone(), cross.clone(), a.clone(), a], 0.05);
+    assert_eq!(c.report.merged, 2, "{:?}", c.report);
+    assert_eq!(c.network.curves.len(), 2);
+    // Two strokes leaving one shared sample at a shallow angle (a neatened graph's node) stay two.
+    let o = DVec3::ZERO;
+    let b = line(o, DVec3::new(1.0, 0.05, 0.0), 21);
+    let d = line(o, DVec3::new(1.0, -0.05, 0.0), 21);
+    let c = run(vec![b, d], 0.05);
+    assert_eq!(c.report.merged, 0, "{:?}", c.report);
+    assert_eq!(c.network.curves.len(), 2);
+}
+
+#[test]
+fn a_retrace_that_cuts_the_corner_it_turned_is_cut_at_its_turn() {
+    // Out along an L (down, then right), back in one straight sample that cuts the corner: the
+    // way back runs up to 0.03 off the way out and at 17° to it near the corner, so overdraw
+    // (band 0.025, 20°) does not take all of it. The turn becomes the end.
+    let gap = 0.05;
+    let pts = vec![
+        DVec3::new(0.0, 0.3, 0.0),
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(0.6, 0.0, 0.0),
+        DVec3::new(0.3, 0.02, 0.0),
+        DVec3::new(0.02, 0.03, 0.0),
+    ];
+    let c = run(vec![Curve { points: pts, ..Default::default() }], gap);
+    assert!(c.report.trimmed >= 1, "{:?}", c.report);
+    let total: f64 = c.network.curves.iter().map(curve_length).sum();
+    assert!((total - 0.9).abs() < 0.05, "one pass (0.9 long) left, got {total}");
+    // A hairpin whose way back leaves the way out (a V opening to 0.2 apart) is drawn so: kept.
+    let v = vec![DVec3::new(0.0, 0.0, 0.0), DVec3::new(0.6, 0.0, 0.0), DVec3::new(0.0, 0.2, 0.0)];
+    let c = run(vec![Curve { points: v.clone(), ..Default::default() }], gap);
+    let total: f64 = c.network.curves.iter().map(curve_length).sum();
+    let drawn = 0.6 + (0.36f64 + 0.04).sqrt();
+    assert!((total - drawn).abs() < 1e-9, "{total} != {drawn}: {:?}", c.report);
+}
