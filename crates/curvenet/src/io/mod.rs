@@ -198,10 +198,10 @@ fn read_full(r: &mut impl std::io::Read, buf: &mut [u8]) -> std::io::Result<usiz
 pub const PARSE_BYTES_PER_INPUT_BYTE: f64 = 9.0;
 
 /// Refuses a file of `size` bytes whose parse ([`PARSE_BYTES_PER_INPUT_BYTE`]) would exceed
-/// the memory available ([`crate::solve::memory::available_memory`]).
+/// the memory available ([`crate::solve::memory::available_for_reading`]).
 fn check_parse_memory(source: &str, size: u64) -> Result<()> {
     let need = size as f64 * PARSE_BYTES_PER_INPUT_BYTE;
-    match crate::solve::memory::available_memory(None) {
+    match crate::solve::memory::available_for_reading() {
         Some(available) if need > available => Err(Error::memory(format!(
             "{source}: reading this {:.0} MB file needs about {:.0} MB of memory, more than the {:.0} MB available",
             size as f64 / 1e6,

@@ -629,7 +629,9 @@ fn across_chords(curve: &mut crate::Curve) {
                 let next = if i + 1 < m { i + 1 } else { 0 };
                 let near = |j: usize| (curve.closed || j.abs_diff(i) == 1).then(|| curve.normals[j]);
                 let sum: DVec3 = [near(prev), near(next)].into_iter().flatten().sum();
-                let from = if (sum - t * sum.dot(t)).length() > 0.5 * sum.length() { sum } else { n };
+                // (Once taken across one chord, the normal is only projected off the other.)
+                let fresh = n == curve.normals[i];
+                let from = if fresh && (sum - t * sum.dot(t)).length() > 0.5 * sum.length() { sum } else { n };
                 let across = (from - t * from.dot(t)).normalize_or_zero();
                 if across != DVec3::ZERO {
                     n = across;

@@ -11,17 +11,31 @@
 const RESERVED_BYTES: f64 = 1.3e9;
 
 /// The memory a run may take: `max` when given, else the smaller of the process's
-/// address-space limit (less the address space reserved beyond use, 1.3 GB, and the matrix
-/// products' workspaces of the threads that may run them, [`gemm_workspace_bytes`]) and the
-/// machine's available memory; `None` when neither is known (not Linux).
+/// address-space limit (less the matrix products' workspaces of the threads that may run them,
+/// [`gemm_workspace_bytes`], and half the address space reserved beyond use, 0.65 GB) and the
+/// machine's available memory; `None` when neither is known (not Linux). At least zero.
 pub fn available_memory(max: Option<f64>) -> Option<f64> {
     if let Some(m) = max {
         return Some(m);
     }
     let limit = address_space_limit().map(|l| {
         let threads = threads_within(l) + 1;
-        l - RESERVED_BYTES - threads as f64 * gemm_workspace_bytes()
+        // Half the reserve beside the workspaces: with two 0.96 GB workspaces a run of 1.1·10⁵
+        // vertices passes under `ulimit -v 3000000` and one of 2·10⁵ aborts (budget 0.35 GB:
+        // ~7.5·10⁴); under 4000000, 4.2·10⁵ pass (budget 1.35 GB: ~2.9·10⁵).
+        (l - 0.5 * RESERVED_BYTES - threads as f64 * gemm_workspace_bytes()).max(0.0)
     });
+    match (limit, machine_available()) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// The memory reading an input may take: as [`available_memory`] without the matrix products'
+/// workspaces (reading multiplies no matrices; a command that goes on to solve is refused by
+/// its own budget, naming the solve).
+pub fn available_for_reading() -> Option<f64> {
+    let limit = address_space_limit().map(|l| (l - RESERVED_BYTES).max(0.0));
     match (limit, machine_available()) {
         (Some(a), Some(b)) => Some(a.min(b)),
         (a, b) => a.or(b),

@@ -98,8 +98,8 @@ pub(super) fn trim_hooks(d: &Dense, pieces: &mut [Piece], gap: f64) -> Vec<(usiz
 /// way out by more than its band, or at more than its angle, as where a coarsely sampled stroke
 /// is retraced across a corner it turned): where the stroke turns back by more than 120° (over
 /// half a gap either side) and everything after the turn, up to half the piece, stays within a
-/// gap of the piece before it, the turn becomes the end — the stroke's one pass is kept.
-/// Returns `(curve, where)` per end cut.
+/// gap of the piece before it, the turn becomes the end — the stroke's one pass is kept. An end
+/// that is a point of another curve is left. Returns `(curve, where)` per end cut.
 pub(super) fn trim_retraces(d: &Dense, pieces: &mut [Piece], gap: f64) -> Vec<(usize, DVec3)> {
     let mut out = Vec::new();
     for piece in pieces.iter_mut() {
@@ -112,6 +112,13 @@ pub(super) fn trim_retraces(d: &Dense, pieces: &mut [Piece], gap: f64) -> Vec<(u
         let length = piece.length(d);
         for side in 0..2 {
             let seq: Vec<usize> = if side == 0 { piece.idx.clone() } else { piece.idx.iter().rev().copied().collect() };
+            // An end that is a point of another curve (a node of a network with shared
+            // crossings) is where it was meant to be: never cut.
+            let mut meets = false;
+            d.near(d.pos[seq[0]], 1e-9 * gap, |j| meets |= d.curve[j] as usize != piece.curve);
+            if meets {
+                continue;
+            }
             let Some(k) = retrace_turn(d, &seq, gap, 0.5 * length) else { continue };
             out.push((piece.curve, d.pos[seq[0]]));
             if side == 0 {

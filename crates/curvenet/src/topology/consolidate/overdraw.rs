@@ -191,6 +191,8 @@ fn shares_a_point(d: &Dense, idx: &[usize], cover: &[Option<usize>], band: f64) 
     let ends = [idx[0], idx[idx.len() - 1]];
     let mut around: Vec<usize> = ends.iter().flat_map(|&i| [d.prev(i), Some(i), d.next(i)]).flatten().collect();
     around.retain(|i| !idx.contains(i));
+    around.sort_unstable();
+    around.dedup();
     let mut covering: Vec<u32> = idx.iter().filter_map(|&i| cover[i]).map(|j| d.curve[j]).collect();
     covering.sort_unstable();
     covering.dedup();
