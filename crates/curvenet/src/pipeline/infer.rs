@@ -330,27 +330,30 @@ fn infer(network: &Network, options: &Options, search: bool) -> Result<Inferred>
         report.chosen_cycles = k.len();
         report.cycles_seconds = cycles_seconds;
     }
-    report.patched_share = patched_share(&trimmed, &patches);
+    report.patched_share = patched_share(&g, &trimmed, &patches);
     report.walk_fallback = !search;
     report.seconds = seconds_since(start);
     Ok(Inferred { network, report, warnings, cycles })
 }
 
-/// The share of the length of the segments of `g` that `patches` (or the boundary loops that
-/// the preparation closes on their own) run along: how much of the sketch a choice of cycles
-/// surfaces, before anything is solved.
-fn patched_share(g: &Graph, patches: &[Patch]) -> f64 {
-    let mut used: Vec<bool> = g.segments.iter().map(|s| s.boundary).collect();
+/// The share of the length of the segments of `g` (the whole graph, dangling parts and all)
+/// that `patches` (or the boundary loops that the preparation closes on their own) run along
+/// in `trimmed` (what is left of `g` once dangling parts and slits are left out): how much of
+/// the sketch a choice of cycles surfaces, before anything is solved. Measured against the
+/// whole graph, so that a choice whose slits (segments with its patch on both sides) were
+/// left out does not count as covering them — both choices are made on the same graph.
+fn patched_share(g: &Graph, trimmed: &Graph, patches: &[Patch]) -> f64 {
+    let mut used: Vec<bool> = trimmed.segments.iter().map(|s| s.boundary).collect();
     patches.iter().flat_map(|p| p.half_edges()).for_each(|h| used[h.segment] = true);
-    let length = |s: &crate::topology::Segment| {
+    let length = |g: &Graph, s: &crate::topology::Segment| {
         let c = &g.curves[s.curve];
         let m = c.points.len();
         (s.first..s.last).map(|i| (c.points[(i + 1) % m] - c.points[i % m]).length()).sum::<f64>()
     };
-    let total: f64 = g.segments.iter().map(length).sum();
-    let on: f64 = g.segments.iter().zip(&used).filter(|(_, u)| **u).map(|(s, _)| length(s)).sum();
+    let total: f64 = g.segments.iter().map(|s| length(g, s)).sum();
+    let on: f64 = trimmed.segments.iter().zip(&used).filter(|(_, u)| **u).map(|(s, _)| length(trimmed, s)).sum();
     if total > 0.0 {
-        on / total
+        (on / total).min(1.0)
     } else {
         1.0
     }

@@ -158,3 +158,19 @@ fn a_normal_along_a_chord_is_taken_across_it_from_its_neighbours() {
     // The others were across already and are kept.
     assert!(curve.normals[1..].iter().all(|&n| n == DVec3::Z));
 }
+
+#[test]
+fn the_patched_share_is_of_the_whole_sketch_dangling_parts_included() {
+    // A disk's rim and a stroke dangling out of it: the patches run along the rim only, and
+    // the share that compares the search's choice with the walk's counts the stroke too (a
+    // choice whose left-out parts were not counted read 1.0 — docs/design.md §15 step 6).
+    let mut net = circle_of_arcs(3);
+    let stroke = (0..=10).map(|i| DVec3::new(1.0 + 0.05 * i as f64, 0.0, 0.0)).collect();
+    net.curves.push(crate::Curve { points: stroke, ..Default::default() });
+    let rim = std::f64::consts::TAU;
+    for search in [true, false] {
+        let r = infer(&net, &Options::default(), search).unwrap().report;
+        let expected = rim / (rim + 0.5);
+        assert!((r.patched_share - expected).abs() < 0.01, "search {search}: {} vs {expected}", r.patched_share);
+    }
+}

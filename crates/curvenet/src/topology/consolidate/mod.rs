@@ -8,7 +8,10 @@
 //!    curve, their positions (and normals where given) averaged.
 //! 2. **Jitter** (`ends.rs`): hooks and tiny loops at stroke ends are cut.
 //! 3. **Gaps** (`ends.rs`): an end that stops short of a stroke or overshoots it becomes a
-//!    junction on it (T, X); two ends that nearly meet, a corner (L) or a closed loop.
+//!    junction on it (T, X); two ends that nearly meet, a corner (L) or a closed loop. In a
+//!    sketch of loose strokes (fewer than half of the ends meet a stroke as drawn), an end
+//!    still free is then carried on along its direction, up to three gaps (`ends.rs`),
+//!    to the first stroke it points at.
 //! 4. **Crossings** (`crossings.rs`): two strokes that pass each other at an angle within the
 //!    gap, away from their ends, are moved to meet (an X drawn in the air).
 //!
@@ -436,8 +439,15 @@ fn warnings(
         push(
             format!(
                 "consolidation: {} stroke end(s) that stopped short of or overshot another stroke within the gap \
-                 ({gap:.3e}) were joined to it: {places} (`consolidate = off` keeps the strokes as drawn)",
-                gaps.joins.len()
+                 ({gap:.3e}){} were joined to it: {places} (`consolidate = off` keeps the strokes as drawn)",
+                gaps.joins.len(),
+                match gaps.extended {
+                    0 => String::new(),
+                    n => format!(
+                        " or pointed at it within {:.3e} ({n} of them, carried on along their direction)",
+                        ends::EXTEND_REACH * gap
+                    ),
+                }
             ),
             first,
         );

@@ -283,3 +283,55 @@ fn a_retrace_that_cuts_the_corner_it_turned_is_cut_at_its_turn() {
     let drawn = 0.6 + (0.36f64 + 0.04).sqrt();
     assert!((total - drawn).abs() < 1e-9, "{total} != {drawn}: {:?}", c.report);
 }
+
+/// A bar and a stem drawn towards it from `(0.5, 1)`, ending `short` below the bar, its last
+/// stretch turned by `turn` degrees away from the bar's normal; a second, separate stroke far
+/// away so that the sketch has loose ends.
+fn stem_sketch(short: f64, turn: f64) -> Vec<Curve> {
+    let bar = line(DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0), 21);
+    let (s, c) = turn.to_radians().sin_cos();
+    let foot = DVec3::new(0.5, short, 0.0);
+    let knee = foot + 0.3 * DVec3::new(-s, c, 0.0);
+    let mut stem = line(DVec3::new(0.5, 1.0, 0.0), knee, 15);
+    stem.points.pop();
+    stem.points.extend(line(knee, foot, 13).points);
+    let far = line(DVec3::new(3.0, 0.0, 0.0), DVec3::new(3.0, 1.0, 0.0), 11);
+    vec![bar, stem, far]
+}
+
+#[test]
+fn an_end_released_short_of_a_stroke_it_points_at_is_carried_on_to_it() {
+    // 2.4 gaps short, drawn straight at the bar: beyond the gap, within the reach along it.
+    let c = run(stem_sketch(0.12, 0.0), 0.05);
+    assert_eq!(c.report.joined, 1, "{:?}", c.report);
+    let stem = &c.network.curves[1];
+    let end = stem.points[stem.points.len() - 1];
+    assert!(distance_to(&c.network.curves[0], end) < 1e-12, "{end}");
+    assert!((end.x - 0.5).abs() < 0.02, "joined along its direction, at {end}");
+    // Pointing 20° off the bar's normal still meets it (within the miss), nearer its end.
+    let c = run(stem_sketch(0.12, 20.0), 0.05);
+    assert_eq!(c.report.joined, 1, "{:?}", c.report);
+}
+
+#[test]
+fn an_end_beyond_the_gap_that_points_elsewhere_or_too_far_stays_free() {
+    // Pointing 60° away from the bar: the ray misses it.
+    let c = run(stem_sketch(0.12, 60.0), 0.05);
+    assert_eq!(c.report.joined, 0, "{:?}", c.report);
+    // Straight at it but 3.6 gaps short: beyond the reach.
+    let c = run(stem_sketch(0.18, 0.0), 0.05);
+    assert_eq!(c.report.joined, 0, "{:?}", c.report);
+    assert!(!c.changed(), "{:?}", c.report);
+}
+
+#[test]
+fn a_graph_whose_ends_meet_keeps_its_free_ends_free() {
+    // Most ends meet a stroke as drawn (a neatened graph): the one released short is meant so.
+    let mut curves = stem_sketch(0.12, 0.0);
+    curves[2] = line(DVec3::new(0.0, 0.0, 0.0), DVec3::new(0.0, 1.0, 0.0), 11);
+    curves.push(line(DVec3::new(1.0, 0.0, 0.0), DVec3::new(1.0, 1.0, 0.0), 11));
+    curves.push(line(DVec3::new(0.0, 1.0, 0.0), DVec3::new(1.0, 1.0, 0.0), 21));
+    let c = run(curves, 0.05);
+    assert_eq!(c.report.joined, 0, "{:?}", c.report);
+    assert!(!c.changed(), "{:?}", c.report);
+}
