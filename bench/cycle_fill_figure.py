@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""docs/figures/cycle-fill.png: the neatened `teapot` sketch as the cycle choice leaves it (a
-hole in its side), and after one `curvenet.fill_cycle` — the viewer's click on a curve along
-the hole (docs/design.md §15). Needs the Python package, trimesh and Pillow, and the CLI
+"""docs/figures/cycle-fill.png: the neatened `teapot` sketch with one patch left open
+(`curvenet.open_patch`, the viewer's click on a patch: a hole in its side), and after one
+`curvenet.fill_cycle` — the viewer's click on a curve along the hole (docs/design.md §15). Needs the Python package, trimesh and Pillow, and the CLI
 binary (target/release/curvenet) for the pictures. Usage: bench/cycle_fill_figure.py."""
 
 import os
@@ -20,6 +20,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BIN = os.path.join(ROOT, "target", "release", "curvenet")
 
 
+# The side panel of the teapot left open.
+PATCH = 20
+
+
 def border_edges(F):
     e = np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), axis=1)
     _, counts = np.unique(e, axis=0, return_counts=True)
@@ -28,7 +32,9 @@ def border_edges(F):
 
 def main():
     warnings.simplefilter("ignore", curvenet.SurfacingWarning)
-    net, _ = curvenet.cycles(curvenet.read_network(os.path.join(ROOT, "data", "sketches", "teapot.obj")))
+    chosen, _ = curvenet.cycles(curvenet.read_network(os.path.join(ROOT, "data", "sketches", "teapot.obj")))
+    # The cycle choice closes the teapot; a side panel left open makes the hole.
+    net = curvenet.open_patch(chosen, PATCH)
     filled, curve = None, None
     for c in range(len(net)):
         try:
@@ -42,7 +48,7 @@ def main():
         network = os.path.join(tmp, "teapot.json")
         net.write(network)
         panels = []
-        for name, n, title in [("before", net, "as chosen"), ("after", filled, f"after fill_cycle(net, {curve})")]:
+        for name, n, title in [("before", net, f"patch {PATCH} left open"), ("after", filled, f"after fill_cycle(net, {curve})")]:
             V, F, _ = curvenet.surface(n)[:3]
             print(f"{name}: {len(F)} triangles, {border_edges(F)} border edges")
             ply, png = os.path.join(tmp, name + ".ply"), os.path.join(tmp, name + ".png")

@@ -67,8 +67,9 @@ fn sampled_meshes_without_normals_are_within_three_times_the_error_with() {
     }
 }
 
-/// The vendored 3D sketches (`data/sketches`, CASSIE, no normals) that surface today (4 of 6), with the
-/// share of their input vertices within 0.5% of the diagonal of the surface.
+/// The vendored 3D sketches (`data/sketches`, CASSIE, no normals) that surface today (5 of 6), with the
+/// share of their input vertices within 0.5% of the diagonal of the surface (1 % for the shield,
+/// whose ornaments are details drawn on it).
 #[test]
 fn sketches_without_normals_surface_through_their_strokes() {
     use curvenet::metrics::MeshDistance;
@@ -86,16 +87,22 @@ fn sketches_without_normals_surface_through_their_strokes() {
         let diag = net.bounding_box().diagonal();
         let d = MeshDistance::new(&s.mesh.positions, &s.mesh.faces);
         let samples: Vec<DVec3> = net.curves.iter().flat_map(|c| c.points.iter().copied()).collect();
-        let near = samples.iter().filter(|p| d.closest(**p).0 <= 5e-3 * diag).count();
+        // The shield's ornaments are loops drawn on it: their own disks are left out (details
+        // drawn on the surface, `pipeline::details`), and the shield passes within 1 % of the
+        // diagonal of them (the issue's measure), not through them.
+        let within = if name == "shield.obj" { 1e-2 } else { 5e-3 };
+        let near = samples.iter().filter(|p| d.closest(**p).0 <= within * diag).count();
         let share = near as f64 / samples.len() as f64;
-        eprintln!("{name}: {:.1}% of the input vertices within 0.5% of the diagonal", 100.0 * share);
+        eprintln!("{name}: {:.1}% of the input vertices within {:.1}% of the diagonal", 100.0 * share, 100.0 * within);
         assert!(share >= 0.95, "{name}: only {:.1}% of the input vertices near the surface", 100.0 * share);
-        // The teapot's search leaves a side panel open (issue 30): every stroke is on the
-        // surface, yet there is a hole, and the run says so (it used to be silent).
+        if name == "shield.obj" {
+            assert!(s.warnings.iter().any(|w| w.message.contains("taken as details drawn on it")), "{name}");
+        }
+        // The teapot's greedy choice left a side panel open (issue 30; the run said so): the
+        // open sides of its border segments, traced again with their neighbours' normals, close it.
         if name == "teapot.obj" {
-            let open = s.warnings.iter().find(|w| w.message.contains("the surface is open along"));
-            assert!(open.is_some_and(|w| w.message.contains("2 border loop(s)")), "{name}: {:?}", s.warnings);
-            assert_eq!(s.stats.open_borders, Some(2));
+            assert!(!s.warnings.iter().any(|w| w.message.contains("the surface is open along")), "{:?}", s.warnings);
+            assert_eq!(s.stats.open_borders, Some(0));
         }
     }
 }

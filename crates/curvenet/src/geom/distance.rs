@@ -116,6 +116,12 @@ impl<'a> MeshDistance<'a> {
 
     /// Distance from `p` to the mesh, the closest point and the index of its face.
     pub fn closest_face(&self, p: DVec3) -> (f64, DVec3, usize) {
+        self.closest_face_where(p, |_| true)
+    }
+
+    /// [`MeshDistance::closest_face`] among the faces `f` with `keep(f)` (infinite distance and
+    /// face `usize::MAX` when there is none).
+    pub fn closest_face_where(&self, p: DVec3, keep: impl Fn(usize) -> bool) -> (f64, DVec3, usize) {
         let mut best = (f64::INFINITY, p, usize::MAX);
         if self.nodes.is_empty() {
             return best;
@@ -128,6 +134,9 @@ impl<'a> MeshDistance<'a> {
             }
             if node.count > 0 {
                 for &t in &self.order[node.start as usize..(node.start + node.count) as usize] {
+                    if !keep(t as usize) {
+                        continue;
+                    }
                     let f = self.faces[t as usize];
                     let [a, b, c] = f.map(|i| self.positions[i as usize]);
                     // A "triangle" whose last two corners agree is a segment (polyline queries).

@@ -8,7 +8,9 @@
 //!    default solves and iterates on before the fine one).
 //! 3. [`solve`]: the method on the patches' domain operators, then normal-control's 3D
 //!    iterations.
-//! 4. [`stats`]: the surface, its statistics and timings.
+//! 4. [`details`]: parts of the surface that are only loops drawn on the rest of it left out;
+//!    [`coverage`]: how near the surface passes to the strokes, and how far each patch strays.
+//! 5. [`stats`]: the surface, its statistics and timings.
 //!
 //! [`surface`] runs them once; [`surfacer::Surfacer`] keeps the mesh and the method's
 //! factorisations for re-solves with new curve normals or positions.
@@ -16,6 +18,7 @@
 pub mod budget;
 pub mod coverage;
 pub mod cycles;
+pub mod details;
 pub mod files;
 pub mod infer;
 mod levels;

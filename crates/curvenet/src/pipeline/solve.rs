@@ -219,6 +219,9 @@ pub(crate) fn solve_prepared(
     let mut surface = finish(prepared, options, result, (iteration_report, coarse), warnings, timings, base, start);
     surface.stats.reach = super::coverage::check_reach(&surface.mesh)?;
     let clock = Instant::now();
+    if let Some(w) = super::details::leave_out_drawn_on(&mut surface) {
+        surface.warnings.push(w);
+    }
     if let Some(w) = super::coverage::check_self_intersections(&surface.mesh, &mut surface.stats) {
         surface.warnings.push(w);
     }

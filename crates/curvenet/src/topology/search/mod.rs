@@ -10,12 +10,16 @@
 //! 1. **Candidates** (`trace`): from each segment, one face on each side, traced with a
 //!    normal carried along the face itself rather than the network's (at a junction whose
 //!    curves lie in one plane, the plane's normal with the carried one's sign); a trace that
-//!    comes back to its first node closes there (petals touching at a flower's centre); where
-//!    that path meets a node twice, the trace backs up and tries the next neighbour.
+//!    comes back to its first node closes there (petals touching at a flower's centre). The
+//!    face leaves each node along the clockwise neighbour; where that path meets a node twice
+//!    or runs too long, the faces that leave along the next neighbour at one node, then at two,
+//!    are tried (a limited discrepancy search: the first simple cycle with the fewest such
+//!    turns).
 //! 2. **Cost**: how far the face is from a patch of a smooth surface — its total turning
 //!    (2π for a flat disk, 2π − ∫K on a curved one, Gauss–Bonnet; a face traced on the wrong
 //!    side of a junction turns by much less or much more), how far its normal comes back
-//!    from where it started after one turn (the twist along it), and a twentieth per segment.
+//!    from where it started after one turn (the twist along it), a twentieth per segment, and
+//!    0.15 per turn along the next neighbour instead of the clockwise one.
 //! 3. **Search**: the cycles in order of cost, each kept when every segment it runs along
 //!    still bounds fewer than two kept patches (one for a boundary curve), when it does not
 //!    fold onto a kept patch across a shared segment (the directions from the segment into
@@ -25,6 +29,11 @@
 //!    share a segment run along it in opposite directions) — greedy best-first over the
 //!    candidates (Zhuang et al. rank the pairings the same way and search the best set; the
 //!    greedy pass is their first step).
+//!    **Holes** (3b): the open side of each segment that one kept patch bounds is traced again,
+//!    with that patch's normal there (the new face oriented as its neighbour) and among the
+//!    segments that can still take a patch only — the first trace of that side may have run
+//!    along a segment two patches took since — and the new faces are offered in the same way,
+//!    for up to three rounds.
 //! 4. **One orientation**: the kept patches turned as the parities say; closed parts turned
 //!    outward (positive enclosed volume), open ones to agree with most of the normals the
 //!    network had.
@@ -120,7 +129,12 @@ fn cost(t: &Trace) -> f64 {
     (t.turning - std::f64::consts::TAU).abs() / std::f64::consts::PI
         + t.holonomy / std::f64::consts::PI
         + 0.05 * t.cycle.len() as f64
+        + DISCREPANCY_COST * t.discrepancies as f64
 }
+
+/// The cost of each node where a face leaves along another segment than the clockwise
+/// neighbour (`trace`).
+const DISCREPANCY_COST: f64 = 0.15;
 
 /// Chooses the cycles of `g` (module documentation); `splines[c]` is the spline of
 /// `g.curves[c]`; the node normals of `g` (zero where unknown) decide the orientation of
@@ -159,46 +173,29 @@ pub fn choose_cycles(g: &Graph, splines: &[CurveSpline]) -> Choice {
     let mut order: Vec<usize> = (0..traces.len()).collect();
     let costs: Vec<f64> = traces.iter().map(cost).collect();
     order.sort_by(|&a, &b| costs[a].total_cmp(&costs[b]).then(a.cmp(&b)));
-    let mut uses = vec![0u8; g.segments.len()];
-    let mut patches: Vec<Chosen> = Vec::new();
-    // Per segment: the kept patches on it and the index of the half-edge they run along it.
-    let mut on: Vec<Vec<(usize, usize)>> = vec![Vec::new(); g.segments.len()];
-    let mut parity = Parity::default();
+    let mut kept = Kept::new(g);
     for i in order {
-        let t = &traces[i];
-        let fits = t.cycle.iter().all(|h| uses[h.segment] < if g.segments[h.segment].boundary { 1 } else { 2 });
-        if !fits {
-            continue;
-        }
-        // Against each kept patch on its segments: the relative orientation (`true`: one of
-        // the two must be turned over, they run along the segment the same way) and the fold.
-        let mut links: Vec<(usize, bool)> = Vec::new();
-        let mut folds = false;
-        for (k, h) in t.cycle.iter().enumerate() {
-            for &(j, kj) in &on[h.segment] {
-                let hj = patches[j].cycle[kj];
-                let turn = hj.forward == h.forward;
-                let (a, b) = (patches[j].inward[kj], t.inward[k]);
-                folds |= 0.5 * (a[0].dot(b[0]) + a[1].dot(b[1])) > FOLD_COS;
-                links.push((j, turn));
-            }
-        }
-        if folds || !parity.consistent(&links) {
-            continue;
-        }
-        let f = parity.push();
-        links.iter().for_each(|&(j, turn)| parity.union(f, j, turn));
-        for (k, h) in t.cycle.iter().enumerate() {
-            uses[h.segment] += 1;
-            on[h.segment].push((f, k));
-        }
-        patches.push(Chosen {
-            cycle: t.cycle.clone(),
-            normals: t.normals.clone(),
-            inward: t.inward.clone(),
-            cost: costs[i],
-        });
+        kept.offer(g, &traces[i], costs[i]);
     }
+    let mut candidates = traces.len();
+    let mut seen: std::collections::HashSet<Vec<usize>> = keys.into_keys().collect();
+    // 3b. The holes: faces traced again from the open side of each border segment, with the
+    // normal of the patch on its other side, among the segments that can still take a patch.
+    for _ in 0..HOLE_ROUNDS {
+        let found = holes(g, &walker, &kept, &mut seen);
+        if found.is_empty() {
+            break;
+        }
+        candidates += found.len();
+        let before = kept.patches.len();
+        for (t, c) in found {
+            kept.offer(g, &t, c);
+        }
+        if kept.patches.len() == before {
+            break;
+        }
+    }
+    let Kept { uses, mut patches, mut parity, .. } = kept;
     // 4. One orientation: each patch turned as its parity says; the parts are the parities'
     // sets.
     let mut parts: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
@@ -209,11 +206,128 @@ pub fn choose_cycles(g: &Graph, splines: &[CurveSpline]) -> Choice {
         }
         parts.entry(root).or_default().push(f);
     }
-    let mut choice = Choice { patches, uses, candidates: traces.len() };
+    let mut choice = Choice { patches, uses, candidates };
     face_outward(g, &mut choice, parts.values());
     canonical_order(&mut choice.patches);
     choice
 }
+
+/// Rounds of [`holes`] at most: each traces the open sides of the border segments again with
+/// the patches kept so far.
+const HOLE_ROUNDS: usize = 3;
+
+/// The patches kept so far (module documentation, step 3).
+struct Kept {
+    /// Per segment: how many kept patches it bounds.
+    uses: Vec<u8>,
+    /// Per segment: the kept patches on it and the index of the half-edge they run along it.
+    on: Vec<Vec<(usize, usize)>>,
+    parity: Parity,
+    patches: Vec<Chosen>,
+}
+
+impl Kept {
+    fn new(g: &Graph) -> Self {
+        Kept {
+            uses: vec![0; g.segments.len()],
+            on: vec![Vec::new(); g.segments.len()],
+            parity: Parity::default(),
+            patches: Vec::new(),
+        }
+    }
+
+    /// How many patches segment `s` of `g` can bound: two, one for a boundary curve.
+    fn room(g: &Graph, s: usize) -> u8 {
+        if g.segments[s].boundary {
+            1
+        } else {
+            2
+        }
+    }
+
+    /// Keeps `t` when each of its segments still has room for it, it does not fold onto a
+    /// kept patch across a shared segment and it can be oriented as the kept patches it
+    /// shares segments with; `true` when kept.
+    fn offer(&mut self, g: &Graph, t: &Trace, cost: f64) -> bool {
+        if !t.cycle.iter().all(|h| self.uses[h.segment] < Self::room(g, h.segment)) {
+            return false;
+        }
+        // Against each kept patch on its segments: the relative orientation (`true`: one of
+        // the two must be turned over, they run along the segment the same way) and the fold.
+        let mut links: Vec<(usize, bool)> = Vec::new();
+        let mut folds = false;
+        for (k, h) in t.cycle.iter().enumerate() {
+            for &(j, kj) in &self.on[h.segment] {
+                let hj = self.patches[j].cycle[kj];
+                let turn = hj.forward == h.forward;
+                let (a, b) = (self.patches[j].inward[kj], t.inward[k]);
+                folds |= 0.5 * (a[0].dot(b[0]) + a[1].dot(b[1])) > FOLD_COS;
+                links.push((j, turn));
+            }
+        }
+        if folds || !self.parity.consistent(&links) {
+            return false;
+        }
+        let f = self.parity.push();
+        links.iter().for_each(|&(j, turn)| self.parity.union(f, j, turn));
+        for (k, h) in t.cycle.iter().enumerate() {
+            self.uses[h.segment] += 1;
+            self.on[h.segment].push((f, k));
+        }
+        self.patches.push(Chosen {
+            cycle: t.cycle.clone(),
+            normals: t.normals.clone(),
+            inward: t.inward.clone(),
+            cost,
+        });
+        true
+    }
+}
+
+/// New candidates for the holes the kept patches leave (module documentation, step 3b): from
+/// each segment one kept patch bounds and another could, the face on its open side — the
+/// half-edge against the kept patch's, with the kept patch's normal there, so that the face
+/// is oriented as its neighbour — traced along the segments that still have room, so that it
+/// cannot run along a segment two patches bound already. Faces seen before (`seen`) are not
+/// offered again; the new ones are returned cheapest first with their costs.
+fn holes(
+    g: &Graph,
+    walker: &Walker,
+    kept: &Kept,
+    seen: &mut std::collections::HashSet<Vec<usize>>,
+) -> Vec<(Trace, f64)> {
+    let allowed: Vec<bool> = (0..g.segments.len()).map(|s| kept.uses[s] < Kept::room(g, s)).collect();
+    let mut found: Vec<(Trace, f64)> = Vec::new();
+    for (s, on) in kept.on.iter().enumerate() {
+        if on.len() != 1 || !allowed[s] {
+            continue;
+        }
+        let (j, k) = on[0];
+        let p = &kept.patches[j];
+        let n = p.cycle.len();
+        // The kept half-edge's end node is the open side's start; its normal there is the
+        // kept patch's at its next half-edge's start.
+        let h = HalfEdge { segment: s, forward: !p.cycle[k].forward };
+        let normal = p.normals[(k + 1) % n];
+        let t = walker.leaving(h);
+        let n0 = (normal - t * normal.dot(t)).normalize_or_zero();
+        if n0 == DVec3::ZERO {
+            continue;
+        }
+        for t in walker.trace_within(h, n0, Some(&allowed), HOLE_ALTERNATIVES) {
+            if !seen.insert(key(&t.cycle)) {
+                continue;
+            }
+            let c = cost(&t);
+            found.push((t, c));
+        }
+    }
+    found.sort_by(|a, b| a.1.total_cmp(&b.1));
+    found
+}
+
+/// Faces traced per open side in [`holes`]: the first few the search finds.
+const HOLE_ALTERNATIVES: usize = 2;
 
 /// Two patches that share a segment fold onto each other when the directions from the segment
 /// into each of them (at its two end nodes, `trace`'s `corner_inward`; averaged) are less

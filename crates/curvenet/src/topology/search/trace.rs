@@ -19,11 +19,36 @@ use crate::geom::DVec3;
 /// The longest cycle traced, in segments: longer ones are not patches of a sketch.
 pub(super) const MAX_CYCLE: usize = 48;
 
-/// Choices tried at each node of a trace: the rotation's clockwise neighbour, then the next.
+/// Choices tried at each node of a trace: the rotation's clockwise neighbour, then the next
+/// (a discrepancy).
 const BRANCHES: usize = 2;
 
-/// Steps (half-edges appended) of one trace in all, its dead ends included.
-const STEPS: usize = 96;
+/// Steps (half-edges appended) of one trace at each number of discrepancies, its dead ends
+/// included.
+const STEPS: usize = 400;
+
+/// Turns other than the clockwise neighbour on one face at most: the search tries the faces
+/// with none, then one, then two (a limited discrepancy search, Harvey and Ginsberg 1995).
+const DISCREPANCIES: usize = 2;
+
+/// The state of one trace's search: the steps left, the faces found and how many are wanted,
+/// and the segments it may run along (all when `None`).
+struct Search<'b> {
+    budget: usize,
+    /// Turns other than the clockwise neighbour still allowed on this path, and taken.
+    discrepancies: usize,
+    used: usize,
+    found: Vec<Trace>,
+    want: usize,
+    allowed: Option<&'b [bool]>,
+}
+
+impl Search<'_> {
+    /// Whether the search is over: out of steps, or as many faces found as wanted.
+    fn done(&self) -> bool {
+        self.budget == 0 || self.found.len() >= self.want
+    }
+}
 
 /// A face being traced: its half-edges so far and what the cost and the fold test need.
 #[derive(Default)]
@@ -87,6 +112,8 @@ pub(super) struct Trace {
     pub(super) turning: f64,
     /// Angle (radians) between the start normal and the normal carried once around.
     pub(super) holonomy: f64,
+    /// Nodes where the face leaves along another segment than the clockwise neighbour.
+    pub(super) discrepancies: usize,
 }
 
 /// Signed angle from `a` to `b` about the unit axis `n` (both projected across `n`).
@@ -217,7 +244,7 @@ impl<'a> Walker<'a> {
     }
 
     /// The unit tangent of `h` where it leaves its first node.
-    fn leaving(&self, h: HalfEdge) -> DVec3 {
+    pub(super) fn leaving(&self, h: HalfEdge) -> DVec3 {
         let seg = &self.g.segments[h.segment];
         let v = if h.forward { seg.start } else { seg.end };
         self.ends[v].iter().find(|e| e.0 == h.segment && e.1 == h.forward).map_or(DVec3::ZERO, |e| e.2)
@@ -234,26 +261,55 @@ impl<'a> Walker<'a> {
     }
 
     /// The face on the left of `h0` about the normal `n0` (unit, across `h0`'s tangent),
-    /// traced as the module documentation says; `None` when it is not a simple cycle of at
-    /// most [`MAX_CYCLE`] segments (it passes a node twice, or a node leaves no way on).
+    /// traced as the module documentation says: of the simple cycles of at most [`MAX_CYCLE`]
+    /// segments, the first found with the fewest discrepancies (at most [`DISCREPANCIES`]);
+    /// `None` when there is none within the steps.
     ///
     /// A trace that comes back to its first node closes there, whatever the order of the
     /// segment ends around it: at a node where sheets touch (petals at the centre of a flower)
     /// that order means nothing, and the cost judges the corner the closing makes.
     pub(super) fn trace(&self, h0: HalfEdge, n0: DVec3) -> Option<Trace> {
+        self.trace_within(h0, n0, None, 1).pop()
+    }
+
+    /// The first `want` faces [`Walker::trace`]'s search finds (in its order: clockwise
+    /// first, the next neighbour where that leads to no simple cycle), along the segments
+    /// `allowed` only (all when `None`; `h0`'s own segment is taken as allowed).
+    pub(super) fn trace_within(&self, h0: HalfEdge, n0: DVec3, allowed: Option<&[bool]>, want: usize) -> Vec<Trace> {
         let s0 = &self.g.segments[h0.segment];
         let first = if h0.forward { s0.start } else { s0.end };
-        let mut partial = Partial::default();
-        let mut budget = STEPS;
-        self.extend(h0, n0, first, h0, n0, 0.0, &mut partial, &mut budget)
+        let mut search = Search { budget: 0, discrepancies: 0, used: 0, found: Vec::new(), want, allowed };
+        for d in 0..=DISCREPANCIES {
+            let mut partial = Partial::default();
+            search.budget = STEPS;
+            search.discrepancies = d;
+            let before = search.found.len();
+            // A deeper level finds the shallower one's faces again first: they are not counted.
+            search.want = want + before;
+            self.extend(h0, n0, first, h0, n0, 0.0, &mut partial, &mut search);
+            let mut k = before;
+            while k < search.found.len() {
+                let key = |t: &Trace| t.cycle.iter().map(|h| h.segment).collect::<Vec<_>>();
+                if search.found[..before].iter().any(|t| key(t) == key(&search.found[k])) {
+                    search.found.remove(k);
+                } else {
+                    k += 1;
+                }
+            }
+            if search.found.len() >= want {
+                break;
+            }
+        }
+        search.found
     }
 
     /// One step of [`Walker::trace`]: appends `h` (carrying the normal `n`, the boundary having
     /// turned by `turning` so far) to `partial` and goes on from its last node — along the
-    /// clockwise neighbour of the arrival end first, and where no simple cycle comes of that,
-    /// along the next one ([`BRANCHES`] choices per node, [`STEPS`] steps per trace in all: a
-    /// junction of a sketch whose ends lie a little out of order must not cost its faces).
-    /// `partial` is as it was when this returns `None`.
+    /// clockwise neighbour of the arrival end first, and where no simple cycle comes of that
+    /// and `search` allows another discrepancy, along the next one ([`BRANCHES`] choices per
+    /// node, [`STEPS`] steps per level of discrepancies: a junction of a sketch whose ends lie
+    /// a little out of order must not cost its faces). The faces found go to `search`;
+    /// `partial` is as it was on return.
     #[allow(clippy::too_many_arguments)]
     fn extend(
         &self,
@@ -264,12 +320,12 @@ impl<'a> Walker<'a> {
         n: DVec3,
         mut turning: f64,
         partial: &mut Partial,
-        budget: &mut usize,
-    ) -> Option<Trace> {
-        if *budget == 0 {
-            return None;
+        search: &mut Search,
+    ) {
+        if search.done() {
+            return;
         }
-        *budget -= 1;
+        search.budget -= 1;
         let g = self.g;
         let (p, t) = self.path(h);
         let carried = transport(&p, &t, n);
@@ -279,16 +335,18 @@ impl<'a> Walker<'a> {
         let seg = &g.segments[h.segment];
         let (v, arrive_at_start) = if h.forward { (seg.end, false) } else { (seg.start, true) };
         if v != first && partial.visited.contains(&v) {
-            return None;
+            return;
         }
-        let mut nv = *carried.last()?;
+        let Some(&(mut nv)) = carried.last() else { return };
         if let Some(est) = self.planar[v] {
             if est.dot(nv).abs() > 0.5 {
                 nv = if est.dot(nv) < 0.0 { -est } else { est };
             }
         }
         // The arrival end's tangent points away from v, back along the segment.
-        let a = self.ends[v].iter().find(|e| e.0 == h.segment && e.1 == arrive_at_start)?.2;
+        let Some(a) = self.ends[v].iter().find(|e| e.0 == h.segment && e.1 == arrive_at_start).map(|e| e.2) else {
+            return;
+        };
         // The counter-clockwise angle from the arrival end about `nv`, in (0, 2π].
         let ccw = |d: DVec3| {
             let ang = angle_about(a, d, nv);
@@ -307,7 +365,9 @@ impl<'a> Walker<'a> {
             let mut o: Vec<(f64, usize, bool, DVec3)> = self.ends[v]
                 .iter()
                 .filter(|&&(s, at_start, d)| {
-                    !(s == h.segment && at_start == arrive_at_start) && (d - nv * d.dot(nv)).length() >= 1e-3
+                    !(s == h.segment && at_start == arrive_at_start)
+                        && search.allowed.is_none_or(|a| a[s])
+                        && (d - nv * d.dot(nv)).length() >= 1e-3
                 })
                 .map(|&(s, at_start, d)| (ccw(d), s, at_start, d))
                 .collect();
@@ -316,7 +376,7 @@ impl<'a> Walker<'a> {
             o
         };
         partial.push(h, n, &p, v);
-        for (ang, s, at_start, d) in options {
+        for (rank, (ang, s, at_start, d)) in options.into_iter().enumerate() {
             // Interior angle on the left: counter-clockwise from the leaving to the arriving end.
             let corner = std::f64::consts::PI - (std::f64::consts::TAU - ang);
             let nn = (nv - d * nv.dot(d)).normalize_or_zero();
@@ -327,23 +387,36 @@ impl<'a> Walker<'a> {
                 let holonomy = nn.angle_between(n0);
                 let cycle = partial.cycle.clone();
                 let inward = (0..cycle.len()).map(|k| self.corner_inward(&cycle, k, &partial.samples)).collect();
-                return Some(Trace {
+                search.found.push(Trace {
                     cycle,
                     normals: partial.normals.clone(),
                     inward,
                     turning: turning + corner,
                     holonomy,
+                    discrepancies: search.used,
                 });
+                break;
             }
             if partial.cycle.len() >= MAX_CYCLE || partial.cycle.iter().any(|c| c.segment == s) {
                 continue;
             }
             let next = HalfEdge { segment: s, forward: at_start };
-            if let Some(found) = self.extend(h0, n0, first, next, nn, turning + corner, partial, budget) {
-                return Some(found);
+            if rank > 0 {
+                if search.discrepancies == 0 {
+                    break;
+                }
+                search.discrepancies -= 1;
+                search.used += 1;
+            }
+            self.extend(h0, n0, first, next, nn, turning + corner, partial, search);
+            if rank > 0 {
+                search.discrepancies += 1;
+                search.used -= 1;
+            }
+            if search.done() {
+                break;
             }
         }
         partial.pop();
-        None
     }
 }
