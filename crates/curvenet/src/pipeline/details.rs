@@ -6,9 +6,15 @@
 //! vertices on its border: the disk or tube of lone loops) and whose border lies on the rest
 //! of the surface is left out, with a warning naming the place. The rest of the surface is
 //! solved as before: parts that share no vertex share no equation.
+//!
+//! Strokes that bound no patch but run over one — those loops, a stroke drawn inside a panel,
+//! the dangling part of a stroke, one the cycle choice left out — are then constraints of the
+//! surface they lie on ([`pull_onto_strokes`]): the surface is deformed onto them, the
+//! displacement a biharmonic field (`Δ² D = 0`, [`crate::methods::harmonic`]) that is zero on
+//! the curves of the network and equal to the stroke's offset at the vertices under it.
 
 use super::stats::Surface;
-use crate::error::Warning;
+use crate::error::{Result, Warning};
 use crate::geom::distance::MeshDistance;
 use crate::geom::{Aabb, DVec3};
 use crate::topology::UnionFind;
@@ -148,6 +154,130 @@ fn keep_faces(surface: &mut Surface, keep: &[bool]) {
     surface.stats.vertices = mesh.num_vertices();
     surface.stats.faces = mesh.faces.len();
     surface.stats.curve_vertices = mesh.num_curve;
+}
+
+/// Strokes within this fraction of the bounding-box diagonal of the surface pull it onto them
+/// (the raw CASSIE strokes that bound no patch lie within 1–4 % of the surface, docs/design.md
+/// §15).
+pub const PULL_REACH: f64 = 0.04;
+
+/// A stroke point pulls the surface only over its inside: at a vertex at least this many edges
+/// from the curves of the network (a stroke that runs on past a border, or along a curve it
+/// duplicates, does not).
+const INSIDE_HOPS: u32 = 3;
+
+/// Deforms `surface` onto the points of `curves` (the network's curves, each its samples and
+/// closedness) that lie over its inside within [`PULL_REACH`] of the diagonal and more than
+/// two mesh edges (`spacing` long) from its curve vertices (module documentation). `Ok(None)`
+/// when no stroke pulls; a warning saying how many points pulled and how far the surface
+/// moved otherwise. Errors only as the biharmonic solve does.
+pub fn pull_onto_strokes(
+    surface: &mut Surface,
+    curves: &[(Vec<DVec3>, bool)],
+    spacing: f64,
+) -> Result<Option<Warning>> {
+    let mesh = &surface.mesh;
+    let nc = mesh.num_curve;
+    if nc == 0 || mesh.faces.is_empty() || !(spacing > 0.0) {
+        return Ok(None);
+    }
+    // The stroke points off the network's curves: densified to the spacing, farther than two
+    // edges from every curve vertex (a point index over them, as degenerate triangles).
+    let dots: Vec<[u32; 3]> = (0..nc as u32).map(|v| [v, v, v]).collect();
+    let on_curves = MeshDistance::new(&mesh.positions, &dots);
+    let mut off: Vec<DVec3> = Vec::new();
+    for (points, closed) in curves {
+        let n = points.len();
+        let m = if *closed { n } else { n.saturating_sub(1) };
+        for i in 0..m {
+            let (a, b) = (points[i], points[(i + 1) % n]);
+            let pieces = ((a.distance(b) / spacing).ceil() as usize).clamp(1, 1000);
+            for k in 0..pieces {
+                let p = a.lerp(b, k as f64 / pieces as f64);
+                if on_curves.closest(p).0 > 2.0 * spacing {
+                    off.push(p);
+                }
+            }
+        }
+    }
+    if off.is_empty() {
+        return Ok(None);
+    }
+    let diag = Aabb::of(mesh.positions.iter().copied()).diagonal();
+    let reach = PULL_REACH * diag;
+    // Edges from the curve vertices (breadth first over the faces' edges).
+    let hops = hops_from_curves(mesh);
+    let bvh = MeshDistance::new(&mesh.positions, &mesh.faces);
+    let mut sum: std::collections::BTreeMap<usize, (DVec3, f64)> = std::collections::BTreeMap::new();
+    for p in off {
+        let (d, q, f) = bvh.closest_face(p);
+        if !(d <= reach) || f == usize::MAX {
+            continue;
+        }
+        let corner = mesh.faces[f].map(|v| v as usize);
+        let Some(&v) =
+            corner.iter().min_by(|&&a, &&b| mesh.positions[a].distance(q).total_cmp(&mesh.positions[b].distance(q)))
+        else {
+            continue;
+        };
+        if hops[v] < INSIDE_HOPS {
+            continue;
+        }
+        let e = sum.entry(v).or_insert((DVec3::ZERO, 0.0));
+        e.0 += p - q;
+        e.1 += 1.0;
+    }
+    let largest = sum.values().map(|(d, k)| (*d / *k).length()).fold(0.0, f64::max);
+    // Points already on the surface (within a thousandth of the diagonal) need no pull.
+    if sum.is_empty() || largest <= 1e-3 * diag {
+        return Ok(None);
+    }
+    let fixed: Vec<usize> = (0..nc).chain(sum.keys().copied()).collect();
+    let mut values = vec![0.0; 3 * nc];
+    for (d, k) in sum.values() {
+        let d = *d / *k;
+        values.extend([d.x, d.y, d.z]);
+    }
+    let field = crate::methods::harmonic::harmonic(&mesh.positions, &mesh.faces, &fixed, &values, 3, 2)?;
+    let pulled = sum.len();
+    let mesh = &mut surface.mesh;
+    for (v, p) in mesh.positions.iter_mut().enumerate().skip(nc) {
+        *p += DVec3::new(field[3 * v], field[3 * v + 1], field[3 * v + 2]);
+    }
+    let (normals, mean_curvature) =
+        crate::operators::normals_and_mean_curvature(&mesh.faces, &mesh.positions, &mesh.on_boundary);
+    surface.normals = normals;
+    surface.mean_curvature = mean_curvature;
+    Ok(Some(Warning::new(format!(
+        "strokes that bound no patch but run over one (within {:.0} % of the diagonal) were taken as constraints: \
+         the surface was pulled onto them at {pulled} vertices, by up to {largest:.3e}",
+        100.0 * PULL_REACH
+    ))))
+}
+
+/// Per vertex of `mesh`: the number of edges to the nearest curve vertex (`u32::MAX` when none
+/// is connected).
+fn hops_from_curves(mesh: &crate::geom::mesh::Mesh) -> Vec<u32> {
+    let n = mesh.num_vertices();
+    let mut next: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for f in &mesh.faces {
+        for k in 0..3 {
+            next[f[k] as usize].push(f[(k + 1) % 3]);
+            next[f[(k + 1) % 3] as usize].push(f[k]);
+        }
+    }
+    let mut hops = vec![u32::MAX; n];
+    let mut queue: std::collections::VecDeque<usize> = (0..mesh.num_curve).collect();
+    queue.iter().for_each(|&v| hops[v] = 0);
+    while let Some(v) = queue.pop_front() {
+        for &w in &next[v] {
+            if hops[w as usize] == u32::MAX {
+                hops[w as usize] = hops[v] + 1;
+                queue.push_back(w as usize);
+            }
+        }
+    }
+    hops
 }
 
 #[cfg(test)]

@@ -216,10 +216,14 @@ pub(crate) fn solve_prepared(
     timings.factor = st.factor;
     timings.solve = st.solve;
     progress("solve", st.operators + st.factor + st.solve, options.method.name());
+    let (curves, spacing) = (prepared.curves.clone(), prepared.spacing);
     let mut surface = finish(prepared, options, result, (iteration_report, coarse), warnings, timings, base, start);
     surface.stats.reach = super::coverage::check_reach(&surface.mesh)?;
     let clock = Instant::now();
     if let Some(w) = super::details::leave_out_drawn_on(&mut surface) {
+        surface.warnings.push(w);
+    }
+    if let Some(w) = super::details::pull_onto_strokes(&mut surface, &curves, spacing)? {
         surface.warnings.push(w);
     }
     if let Some(w) = super::coverage::check_self_intersections(&surface.mesh, &mut surface.stats) {

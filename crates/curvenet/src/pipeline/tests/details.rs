@@ -49,3 +49,38 @@ fn a_loop_drawn_on_the_surface_is_a_detail_and_one_above_it_a_disk() {
     assert_eq!(above.stats.cycles, 2);
     assert!(above.mesh.positions.iter().any(|p| p.z > 0.1));
 }
+
+/// A unit square outline (a flat disk) with a straight stroke inside it at height `z`, from
+/// `(0.3, 0.5, z)` to `(0.7, 0.5, z)`, meeting nothing.
+fn square_with_stroke(z: f64) -> crate::Network {
+    let text = format!(
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nl 1 2\nl 2 3\nl 3 4\nl 4 1\nv 0.3 0.5 {z}\nv 0.5 0.5 {z}\nv 0.7 0.5 {z}\nl 5 6 7\n"
+    );
+    crate::io::parse_network(&text, crate::io::NetworkFormat::Obj, "square.obj").unwrap()
+}
+
+/// A stroke that bounds no patch but runs over one, 0.02 above it (1.4 % of the diagonal), is
+/// a constraint: the surface passes through it (within a thousandth of the diagonal) and stays
+/// on its border curve; 0.2 above (14 %, beyond the reach) it pulls nothing and the disk stays
+/// flat.
+#[test]
+fn a_stroke_over_a_patch_pulls_the_surface_onto_it() {
+    let mut options = Options::default().with_vertices(3000);
+    // As drawn: consolidation would carry the stroke's ends on to the border (a sketch of loose
+    // strokes), and the stroke would split the disk.
+    options.consolidate.enabled = false;
+    let s = surface(&square_with_stroke(0.02), &options).unwrap();
+    assert!(s.warnings.iter().any(|w| w.message.contains("were taken as constraints")), "{:?}", s.warnings);
+    let d = crate::geom::distance::MeshDistance::new(&s.mesh.positions, &s.mesh.faces);
+    let diag = crate::geom::Aabb::of(s.mesh.positions.iter().copied()).diagonal();
+    for k in 0..=20 {
+        let p = crate::geom::DVec3::new(0.3 + 0.4 * k as f64 / 20.0, 0.5, 0.02);
+        assert!(d.closest(p).0 < 1e-3 * diag, "{p}: {:.2e} off", d.closest(p).0);
+    }
+    assert!(s.mesh.positions[..s.mesh.num_curve].iter().all(|p| p.z.abs() < 1e-12), "the border stays");
+    assert!(s.mesh.positions.iter().all(|p| p.z > -1e-3 && p.z < 0.021), "a bump to the stroke, no more");
+
+    let far = surface(&square_with_stroke(0.2), &options).unwrap();
+    assert!(!far.warnings.iter().any(|w| w.message.contains("were taken as constraints")));
+    assert!(far.mesh.positions.iter().all(|p| p.z.abs() < 1e-9));
+}
