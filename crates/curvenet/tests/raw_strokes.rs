@@ -107,7 +107,8 @@ fn clean_examples_give_the_same_surface_with_consolidation_on_and_off() {
 /// The raw CASSIE strokes (`data/sketches/raw`): whatever surfaces stays near the strokes — no
 /// vertex farther outside their bounding box than half its diagonal. The raw `flower` made a
 /// spike twice the sketch's size out of a folded patch and exited 0 before the reach check
-/// (`pipeline::coverage::check_reach`); now it is refused.
+/// (`pipeline::coverage::check_reach`); then it was refused; now that patch is left open
+/// (below).
 #[test]
 fn raw_sketches_never_give_a_surface_far_outside_the_strokes() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/sketches/raw");
@@ -129,4 +130,21 @@ fn raw_sketches_never_give_a_surface_far_outside_the_strokes() {
             Err(e) => eprintln!("{name}: {e}"),
         }
     }
+}
+
+/// A sketch's patch that runs away is left open and the sketch surfaced again, with a warning
+/// naming the patch: the raw `flower`'s patch 10 (a cycle the choice got wrong) stopped the
+/// run; now it surfaces, no patch farther out than the reach allows, and the coverage (above
+/// half of the strokes, or the run would be an error) is measured against the strokes as drawn.
+#[test]
+fn a_sketch_patch_that_runs_away_is_left_open() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/sketches/raw/flower.obj");
+    let net = curvenet::io::read_network(&path).unwrap();
+    let s = surface(&net, &Options::default().with_vertices(20000)).unwrap();
+    let opened = s.warnings.iter().find(|w| w.message.contains("it was left open and the sketch surfaced again"));
+    assert!(opened.is_some_and(|w| w.at.patch == Some(10) && w.message.contains("runs away")), "{:?}", s.warnings);
+    assert!(s.stats.reach <= curvenet::pipeline::coverage::MAX_REACH);
+    let coverage = s.stats.coverage.expect("measured");
+    eprintln!("flower: coverage {coverage:.2}, reach {:.2}", s.stats.reach);
+    assert!(coverage >= curvenet::pipeline::coverage::MIN_COVERAGE);
 }

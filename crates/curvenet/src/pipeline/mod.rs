@@ -52,7 +52,61 @@ pub fn surface_with_progress(
     options: &Options,
     progress: &mut dyn FnMut(&str, f64, &str),
 ) -> Result<Surface> {
-    let original = network;
+    // A sketch's patch that runs away (a cycle the choice got wrong) is left open and the
+    // sketch surfaced again, a few times at most; a network with normals or cycles of its own
+    // keeps the error (docs/design.md §15).
+    let retry = network.cycles.is_none() && infer::needs_inference(network, options);
+    let mut current = Cow::Borrowed(network);
+    let mut opened: Vec<(usize, String)> = Vec::new();
+    loop {
+        match surface_as(&current, network, options, progress) {
+            Err(e) if retry && opened.len() < MAX_OPENED && is_runaway(&e).is_some() => {
+                let patch = is_runaway(&e).unwrap_or(0);
+                // A patch past the cycles (a lone loop's disk) cannot be left open: the error stands.
+                let Ok(next) = cycles::with_patch_left_open(&current, options, patch) else { return Err(e) };
+                // "patch N: its surface runs away … outside them", without what the error adds.
+                let text = e.to_string();
+                let why = text.split(" (a spike").next().unwrap_or(&text).trim_start_matches("numerical failure: ");
+                opened.push((patch, why.to_string()));
+                current = Cow::Owned(next);
+            }
+            Err(e) => return Err(e),
+            Ok(mut s) => {
+                for (patch, why) in opened.iter().rev() {
+                    s.warnings.insert(
+                        0,
+                        crate::error::Warning::new(format!(
+                            "{why} (a cycle that bounds no sensible surface): it was left open and the sketch \
+                             surfaced again without it"
+                        ))
+                        .patch(*patch),
+                    );
+                }
+                return Ok(s);
+            }
+        }
+    }
+}
+
+/// Patches of a sketch left open at most, one after another, when they run away.
+const MAX_OPENED: usize = 3;
+
+/// The patch of a run-away error ([`coverage::check_reach`]).
+fn is_runaway(e: &crate::Error) -> Option<usize> {
+    match e {
+        crate::Error::Numerical { message, .. } if message.contains("runs away from its curves") => e.at().patch,
+        _ => None,
+    }
+}
+
+/// [`surface_with_progress`] once: `network` surfaced, its coverage measured against
+/// `original` (the strokes as given).
+fn surface_as(
+    network: &Network,
+    original: &Network,
+    options: &Options,
+    progress: &mut dyn FnMut(&str, f64, &str),
+) -> Result<Surface> {
     let consolidated = consolidate(network, options, progress)?;
     let network = consolidated.as_ref().filter(|c| c.changed()).map_or(network, |c| &c.network);
     let (inferred, prepared) = infer::infer_and_prepare(network, options, progress)?;
@@ -63,7 +117,7 @@ pub fn surface_with_progress(
     let base = prepared.timings;
     let mut surface = solve::solve_prepared(Cow::Owned(prepared), options, progress, None, base).map_err(explain)?;
     let changed = consolidated.as_ref().is_some_and(|c| c.changed());
-    if inferred.is_some() || changed || !surface.warnings.is_empty() {
+    if inferred.is_some() || changed || !surface.warnings.is_empty() || !std::ptr::eq(network, original) {
         let mut warnings = Vec::new();
         let clock = crate::solve::timing::Instant::now();
         surface.stats.coverage = Some(coverage::check_coverage(&surface.mesh, original, &mut warnings)?);
