@@ -2,10 +2,11 @@
 //! other bounds a disk of its own (§12, lone loops), but one drawn on another part of the
 //! surface — an ornament on a shield, a button on a sketched mouse — is a detail of that part,
 //! not a patch: its disk stands on the surface, a cap or a cone through it. After the solve, a
-//! connected part of the mesh that is bounded by open borders only (every one of its curve
-//! vertices on its border: the disk or tube of lone loops) and whose border lies on the rest
-//! of the surface is left out, with a warning naming the place. The rest of the surface is
-//! solved as before: parts that share no vertex share no equation.
+//! connected part of the mesh that is a disk (Euler characteristic 1: a lone loop's, or a
+//! loop with strokes across it) and whose curve vertices lie over the inside of the rest of
+//! the surface (not at its border: a lid that closes another part's opening is no detail) is
+//! left out, with a warning naming the place. The rest of the surface is solved as before:
+//! parts that share no vertex share no equation.
 //!
 //! Strokes that bound no patch but run over one — those loops, a stroke drawn inside a panel,
 //! the dangling part of a stroke, one the cycle choice left out — are then constraints of the
@@ -24,7 +25,7 @@ use crate::topology::UnionFind;
 /// surface counts as on it).
 pub const ON_SURFACE: f64 = super::coverage::NEAR;
 
-/// A part is drawn on the rest when at least this share of its border vertices lie on it (a
+/// A part is drawn on the rest when at least this share of its curve vertices lie on it (a
 /// hand-drawn loop strays here and there).
 pub const ON_SHARE: f64 = 0.9;
 
@@ -86,9 +87,14 @@ pub fn leave_out_drawn_on(surface: &mut Surface) -> Option<Warning> {
     let bvh = MeshDistance::new(&mesh.positions, &mesh.faces);
     let mut dropped: Vec<(usize, DVec3)> = Vec::new();
     for (r, verts) in &candidates {
+        // On the rest within the tolerance, over a face with no curve vertex (inside a patch).
+        let inside = |f: usize| f != usize::MAX && mesh.faces[f].iter().all(|&v| v as usize >= mesh.num_curve);
         let on = verts
             .iter()
-            .filter(|&&v| bvh.closest_face_where(mesh.positions[v], |f| part_of_face[f] != *r).0 <= tol)
+            .filter(|&&v| {
+                let (d, _, f) = bvh.closest_face_where(mesh.positions[v], |f| part_of_face[f] != *r);
+                d <= tol && inside(f)
+            })
             .count();
         if on as f64 >= ON_SHARE * verts.len() as f64 {
             dropped.push((*r, mesh.positions[verts[0]]));
@@ -107,7 +113,7 @@ pub fn leave_out_drawn_on(surface: &mut Surface) -> Option<Warning> {
     surface.stats.cycles = surface.stats.cycles.saturating_sub(patches_gone);
     let places: Vec<String> = dropped.iter().take(4).map(|d| crate::geom::fmt_point(d.1)).collect();
     Some(Warning::new(format!(
-        "{} part(s) of the surface bounded by closed curves that meet no other (near {}{}) lie on the rest of the \
+        "{} disk-shaped part(s) of the surface whose curves meet no other part (near {}{}) lie on the rest of the \
          surface (within {:.0} % of the diagonal): taken as details drawn on it, their disks were left out",
         dropped.len(),
         places.join(", "),
