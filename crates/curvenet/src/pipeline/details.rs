@@ -15,7 +15,7 @@
 //! the curves of the network and equal to the stroke's offset at the vertices under it.
 
 use super::stats::Surface;
-use crate::error::{Result, Warning};
+use crate::error::Warning;
 use crate::geom::distance::MeshDistance;
 use crate::geom::{Aabb, DVec3};
 use crate::topology::UnionFind;
@@ -177,15 +177,11 @@ const INSIDE_HOPS: u32 = 3;
 /// two mesh edges (`spacing` long) from its curve vertices (module documentation). `Ok(None)`
 /// when no stroke pulls; a warning saying how many points pulled and how far the surface
 /// moved otherwise. Errors only as the biharmonic solve does.
-pub fn pull_onto_strokes(
-    surface: &mut Surface,
-    curves: &[(Vec<DVec3>, bool)],
-    spacing: f64,
-) -> Result<Option<Warning>> {
+pub fn pull_onto_strokes(surface: &mut Surface, curves: &[(Vec<DVec3>, bool)], spacing: f64) -> Option<Warning> {
     let mesh = &surface.mesh;
     let nc = mesh.num_curve;
     if nc == 0 || mesh.faces.is_empty() || !(spacing > 0.0) {
-        return Ok(None);
+        return None;
     }
     // The stroke points off the network's curves: densified to the spacing, farther than two
     // edges from every curve vertex (a point index over them, as degenerate triangles).
@@ -207,7 +203,7 @@ pub fn pull_onto_strokes(
         }
     }
     if off.is_empty() {
-        return Ok(None);
+        return None;
     }
     let diag = Aabb::of(mesh.positions.iter().copied()).diagonal();
     let reach = PULL_REACH * diag;
@@ -236,29 +232,68 @@ pub fn pull_onto_strokes(
     let largest = sum.values().map(|(d, k)| (*d / *k).length()).fold(0.0, f64::max);
     // Points already on the surface (within a thousandth of the diagonal) need no pull.
     if sum.is_empty() || largest <= 1e-3 * diag {
-        return Ok(None);
+        return None;
     }
-    let fixed: Vec<usize> = (0..nc).chain(sum.keys().copied()).collect();
-    let mut values = vec![0.0; 3 * nc];
-    for (d, k) in sum.values() {
-        let d = *d / *k;
+    // Only the patches under the strokes move (free vertices belong to one patch each; the
+    // curve vertices between patches stay): the biharmonic solve runs on them alone.
+    let mut moving = std::collections::BTreeSet::new();
+    for (f, &p) in mesh.faces.iter().zip(&mesh.face_patch) {
+        if f.iter().any(|v| sum.contains_key(&(*v as usize))) {
+            moving.insert(p);
+        }
+    }
+    let faces: Vec<[u32; 3]> =
+        mesh.faces.iter().zip(&mesh.face_patch).filter(|x| moving.contains(x.1)).map(|x| *x.0).collect();
+    let mut local = vec![u32::MAX; mesh.num_vertices()];
+    let mut global: Vec<usize> = Vec::new();
+    for f in &faces {
+        for &v in f {
+            if local[v as usize] == u32::MAX {
+                local[v as usize] = global.len() as u32;
+                global.push(v as usize);
+            }
+        }
+    }
+    let faces: Vec<[u32; 3]> = faces.iter().map(|f| f.map(|v| local[v as usize])).collect();
+    let positions: Vec<DVec3> = global.iter().map(|&v| mesh.positions[v]).collect();
+    let mut fixed: Vec<usize> = Vec::new();
+    let mut values: Vec<f64> = Vec::new();
+    for (i, &v) in global.iter().enumerate() {
+        let d = if v < nc {
+            DVec3::ZERO
+        } else if let Some((d, k)) = sum.get(&v) {
+            *d / *k
+        } else {
+            continue;
+        };
+        fixed.push(i);
         values.extend([d.x, d.y, d.z]);
     }
-    let field = crate::methods::harmonic::harmonic(&mesh.positions, &mesh.faces, &fixed, &values, 3, 2)?;
+    let field = match crate::methods::harmonic::harmonic(&positions, &faces, &fixed, &values, 3, 2) {
+        Ok(f) => f,
+        Err(e) => {
+            return Some(Warning::new(format!(
+                "strokes that bound no patch run over one, but the surface could not be pulled onto them ({e}): it \
+                 was left as solved"
+            )))
+        }
+    };
     let pulled = sum.len();
     let mesh = &mut surface.mesh;
-    for (v, p) in mesh.positions.iter_mut().enumerate().skip(nc) {
-        *p += DVec3::new(field[3 * v], field[3 * v + 1], field[3 * v + 2]);
+    for (i, &v) in global.iter().enumerate() {
+        if v >= nc {
+            mesh.positions[v] += DVec3::new(field[3 * i], field[3 * i + 1], field[3 * i + 2]);
+        }
     }
     let (normals, mean_curvature) =
         crate::operators::normals_and_mean_curvature(&mesh.faces, &mesh.positions, &mesh.on_boundary);
     surface.normals = normals;
     surface.mean_curvature = mean_curvature;
-    Ok(Some(Warning::new(format!(
+    Some(Warning::new(format!(
         "strokes that bound no patch but run over one (within {:.0} % of the diagonal) were taken as constraints: \
          the surface was pulled onto them at {pulled} vertices, by up to {largest:.3e}",
         100.0 * PULL_REACH
-    ))))
+    )))
 }
 
 /// Per vertex of `mesh`: the number of edges to the nearest curve vertex (`u32::MAX` when none

@@ -223,7 +223,7 @@ pub(crate) fn solve_prepared(
     if let Some(w) = super::details::leave_out_drawn_on(&mut surface) {
         surface.warnings.push(w);
     }
-    if let Some(w) = super::details::pull_onto_strokes(&mut surface, &curves, spacing)? {
+    if let Some(w) = super::details::pull_onto_strokes(&mut surface, &curves, spacing) {
         surface.warnings.push(w);
     }
     if let Some(w) = super::coverage::check_self_intersections(&surface.mesh, &mut surface.stats) {
