@@ -173,36 +173,126 @@ pub(crate) fn infer_and_prepare(
         (Ok(_), Err(_)) => true,
         (Err(_), _) => false,
     };
-    let attempt = |mut i: Inferred, progress: Progress<'_>| {
+    // `repairs`: meetings of curves whose inferred normals disagree that may be made one
+    // (a crease the inference smoothed, a dense junction; issue 30) — only when neither
+    // choice can be surfaced as inferred, so that a choice that surfaces keeps its normals.
+    let attempt = |mut i: Inferred, repairs: usize, progress: Progress<'_>| {
         i.report.seconds = seconds;
-        let p = prepare(&i.network, options, i.cycles.as_deref(), progress).map_err(explain)?;
-        Ok::<_, crate::Error>((i, p))
+        let mut repaired = 0;
+        loop {
+            match prepare(&i.network, options, i.cycles.as_deref(), progress) {
+                Ok(p) => return Ok::<_, crate::Error>((i, p)),
+                Err(e) if repaired < repairs && points_inward(&e).is_some() => {
+                    let p = points_inward(&e).unwrap_or(DVec3::ZERO);
+                    let snap = i.network.snap.unwrap_or_else(|| i.network.snap_tolerance());
+                    if !agree_at(&mut i.network, p, 2.0 * snap) {
+                        return Err(explain(e));
+                    }
+                    repaired += 1;
+                    i.report.contradictions += 1;
+                    i.warnings.push(
+                        Warning::new(format!(
+                            "{e}: the inferred normals there were made one (their mean) and the network surfaced so"
+                        ))
+                        .curve(e.at().curve.unwrap_or(0)),
+                    );
+                }
+                Err(e) => return Err(explain(e)),
+            }
+        }
     };
     let (first, second) = if search_first { (searched, walked) } else { (walked, searched) };
-    let first = first.and_then(|i| attempt(i, &mut *progress));
+    let copies = (first.as_ref().ok().cloned(), second.as_ref().ok().cloned());
+    let first = first.and_then(|i| attempt(i, 0, &mut *progress));
+    let (this, other) = if search_first {
+        ("the rotation walk on the inferred normals", "chosen over the whole network")
+    } else {
+        ("the cycle choice over the whole network", "of the rotation walk on the inferred normals")
+    };
+    let fell_back = |e: &crate::Error| {
+        Warning::new(format!(
+            "the patches {other} could not be surfaced ({e}); they were found by {this} instead: check the result"
+        ))
+    };
     match first {
         Ok((i, p)) => Ok((Some(i), p)),
         Err(e) => {
-            // The second choice; when it fails too, the walk's error stands (as before the
-            // search).
-            let second = second.and_then(|i| attempt(i, &mut *progress));
-            match second {
+            // The second choice; when it fails too, each again with their normals made one
+            // where curves meet at odds; when that fails too, the walk's error stands (as
+            // before the search).
+            match second.and_then(|i| attempt(i, 0, &mut *progress)) {
                 Ok((mut i, p)) => {
-                    let (this, other) = if search_first {
-                        ("the rotation walk on the inferred normals", "chosen over the whole network")
-                    } else {
-                        ("the cycle choice over the whole network", "of the rotation walk on the inferred normals")
-                    };
-                    i.warnings.push(Warning::new(format!(
-                        "the patches {other} could not be surfaced ({e}); they were found by {this} instead: check \
-                         the result"
-                    )));
+                    i.warnings.push(fell_back(&e));
                     Ok((Some(i), p))
                 }
-                Err(e2) => Err(if search_first { e2 } else { e }),
+                Err(e2) => {
+                    if let Some(Ok((i, p))) = copies.0.map(|i| attempt(i, MAX_MEETINGS_REPAIRED, &mut *progress)) {
+                        return Ok((Some(i), p));
+                    }
+                    if let Some(Ok((mut i, p))) = copies.1.map(|i| attempt(i, MAX_MEETINGS_REPAIRED, &mut *progress)) {
+                        i.warnings.push(fell_back(&e));
+                        return Ok((Some(i), p));
+                    }
+                    Err(if search_first { e2 } else { e })
+                }
             }
         }
     }
+}
+
+/// Meetings of curves whose inferred normals disagree made one at most, one after another.
+const MAX_MEETINGS_REPAIRED: usize = 8;
+
+/// The place of node finding's error on curves that meet with normals more than 90° apart.
+fn points_inward(e: &crate::Error) -> Option<DVec3> {
+    match e {
+        crate::Error::Input { message, .. } if message.contains("one of them points inward") => {
+            e.at().point.map(DVec3::from_array)
+        }
+        _ => None,
+    }
+}
+
+/// Makes the normals of `net`'s curves agree where they pass within `radius` of `p`: on each
+/// such curve the two samples around its closest point to `p` take the mean of those samples'
+/// normals (their bisector where two sheets meet at a crease), across the curve's tangent.
+/// `false` when nothing changed (no curve there, or the normals cancel out).
+fn agree_at(net: &mut Network, p: DVec3, radius: f64) -> bool {
+    // Per curve passing near `p`: the samples around its closest point.
+    let mut around: Vec<(usize, [usize; 2])> = Vec::new();
+    for (ci, c) in net.curves.iter().enumerate() {
+        let m = c.points.len();
+        if m < 2 || c.normals.len() != m {
+            continue;
+        }
+        let pieces = if c.closed { m } else { m - 1 };
+        let best = (0..pieces)
+            .map(|k| {
+                let (a, b) = (c.points[k], c.points[(k + 1) % m]);
+                (crate::geom::distance::closest_point_on_segment(p, a, b).distance(p), k)
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0));
+        if let Some((d, k)) = best.filter(|b| b.0 <= radius) {
+            let _ = d;
+            around.push((ci, [k, (k + 1) % m]));
+        }
+    }
+    let sum: DVec3 =
+        around.iter().flat_map(|(c, ks)| ks.iter().map(move |&k| (*c, k))).map(|(c, k)| net.curves[c].normals[k]).sum();
+    let Some(mean) = sum.try_normalize() else { return false };
+    let mut changed = false;
+    for (c, ks) in around {
+        let curve = &mut net.curves[c];
+        let t = (curve.points[ks[1]] - curve.points[ks[0]]).normalize_or_zero();
+        let n = (mean - t * mean.dot(t)).normalize_or_zero();
+        for k in ks {
+            if n != DVec3::ZERO && n != curve.normals[k] {
+                curve.normals[k] = n;
+                changed = true;
+            }
+        }
+    }
+    changed
 }
 
 /// [`infer_normals`]; `search`: the cycles chosen over the whole network and the node normals

@@ -174,3 +174,37 @@ fn the_patched_share_is_of_the_whole_sketch_dangling_parts_included() {
         assert!((r.patched_share - expected).abs() < 0.01, "search {search}: {} vs {expected}", r.patched_share);
     }
 }
+
+/// Two straight curves crossing at the origin (along x and along y) whose inferred normals are
+/// 104° apart there (a crease the inference smoothed): made one at the crossing — the two
+/// samples around it on each curve take the mean, across their curve, no longer more than 90°
+/// apart — and left alone elsewhere; far from any curve, nothing changes.
+#[test]
+fn normals_at_odds_where_curves_meet_are_made_one() {
+    let line = |d: DVec3, n: DVec3| crate::Curve {
+        points: (-3..=3).map(|k| d * (k as f64 + 0.5) * 0.1).collect(),
+        normals: vec![n; 7],
+        ..Default::default()
+    };
+    let t = 52f64.to_radians();
+    let a = line(DVec3::X, DVec3::new(0.0, t.sin(), t.cos()));
+    let b = line(DVec3::Y, DVec3::new(t.sin(), 0.0, -t.cos()));
+    let mut net = Network { curves: vec![a, b], snap: Some(1e-3), cycles: None };
+    let before = net.curves[0].normals[3].dot(net.curves[1].normals[3]);
+    assert!((before.acos().to_degrees() - 112.4).abs() < 1.0, "{}", before.acos().to_degrees());
+    assert!(!agree_at(&mut net.clone(), DVec3::new(5.0, 5.0, 5.0), 0.01));
+    assert!(agree_at(&mut net, DVec3::ZERO, 0.01));
+    for (c, along) in net.curves.iter().zip([DVec3::X, DVec3::Y]) {
+        let around: Vec<usize> = (0..7).filter(|&k| c.points[k].length() < 0.06).collect();
+        assert_eq!(around, vec![2, 3]);
+        for k in 0..7 {
+            let moved = around.contains(&k);
+            assert_eq!(moved, c.normals[k] != c.normals[0], "sample {k}");
+            assert!(c.normals[k].dot(along).abs() < 1e-12 && (c.normals[k].length() - 1.0).abs() < 1e-12);
+        }
+    }
+    assert!(net.curves[0].normals[3].dot(net.curves[1].normals[3]) > -1e-12, "no longer more than 90° apart");
+    let e = Error::input("curve 0 and curve 1 meet at (0, 0, 0) with normals 112° apart: one of them points inward")
+        .point(DVec3::ZERO);
+    assert_eq!(points_inward(&e), Some(DVec3::ZERO));
+}
