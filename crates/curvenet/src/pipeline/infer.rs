@@ -272,8 +272,7 @@ fn agree_at(net: &mut Network, p: DVec3, radius: f64) -> bool {
                 (crate::geom::distance::closest_point_on_segment(p, a, b).distance(p), k)
             })
             .min_by(|x, y| x.0.total_cmp(&y.0));
-        if let Some((d, k)) = best.filter(|b| b.0 <= radius) {
-            let _ = d;
+        if let Some((_, k)) = best.filter(|b| b.0 <= radius) {
             around.push((ci, [k, (k + 1) % m]));
         }
     }
