@@ -139,27 +139,30 @@ fn keep_faces(surface: &mut Surface, keep: &[bool]) {
             next += 1;
         }
     }
-    let pick = |v: &[bool]| v.iter().zip(&used).filter(|x| *x.1).map(|x| *x.0).collect::<Vec<bool>>();
-    let pick3 = |v: &[DVec3]| v.iter().zip(&used).filter(|x| *x.1).map(|x| *x.0).collect::<Vec<DVec3>>();
     let num_curve = used[..mesh.num_curve].iter().filter(|u| **u).count();
-    mesh.positions = pick3(&mesh.positions);
-    mesh.curve_normals = mesh.curve_normals.iter().zip(&used).filter(|x| *x.1).map(|x| *x.0).collect();
-    mesh.on_boundary = pick(&mesh.on_boundary);
+    mesh.positions = masked(&mesh.positions, &used);
+    mesh.curve_normals = masked(&mesh.curve_normals, &used);
+    mesh.on_boundary = masked(&mesh.on_boundary, &used);
     mesh.num_curve = num_curve;
-    let faces = std::mem::take(&mut mesh.faces);
-    mesh.faces = faces.iter().zip(keep).filter(|x| *x.1).map(|x| x.0.map(|v| index[v as usize])).collect();
-    mesh.planar = mesh.planar.iter().zip(keep).filter(|x| *x.1).map(|x| *x.0).collect();
-    mesh.face_patch = mesh.face_patch.iter().zip(keep).filter(|x| *x.1).map(|x| *x.0).collect();
+    mesh.faces = masked(&mesh.faces, keep).into_iter().map(|f| f.map(|v| index[v as usize])).collect();
+    mesh.planar = masked(&mesh.planar, keep);
+    mesh.face_patch = masked(&mesh.face_patch, keep);
     mesh.seam_rows.retain(|r| used[r.0 as usize]);
     mesh.seam_rows.iter_mut().for_each(|r| r.0 = index[r.0 as usize]);
     mesh.pattern = Default::default();
-    surface.normals = pick3(&surface.normals);
-    surface.mean_curvature = surface.mean_curvature.iter().zip(&used).filter(|x| *x.1).map(|x| *x.0).collect();
-    surface.propagated_normals = surface.propagated_normals.as_deref().map(pick3);
-    surface.curve_flags = pick(&surface.curve_flags);
+    surface.normals = masked(&surface.normals, &used);
+    surface.mean_curvature = masked(&surface.mean_curvature, &used);
+    surface.propagated_normals = surface.propagated_normals.as_deref().map(|p| masked(p, &used));
+    surface.curve_flags = masked(&surface.curve_flags, &used);
     surface.stats.vertices = mesh.num_vertices();
     surface.stats.faces = mesh.faces.len();
     surface.stats.curve_vertices = mesh.num_curve;
+}
+
+/// The items of `v` whose entry in `mask` is set (`v` may be shorter: the curve vertices'
+/// attributes against a per-vertex mask).
+fn masked<T: Copy>(v: &[T], mask: &[bool]) -> Vec<T> {
+    v.iter().zip(mask).filter(|x| *x.1).map(|x| *x.0).collect()
 }
 
 /// Strokes within this fraction of the bounding-box diagonal of the surface pull it onto them

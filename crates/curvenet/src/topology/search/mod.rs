@@ -247,10 +247,10 @@ impl Kept {
 
     /// Keeps `t` when each of its segments still has room for it, it does not fold onto a
     /// kept patch across a shared segment and it can be oriented as the kept patches it
-    /// shares segments with; `true` when kept.
-    fn offer(&mut self, g: &Graph, t: &Trace, cost: f64) -> bool {
+    /// shares segments with.
+    fn offer(&mut self, g: &Graph, t: &Trace, cost: f64) {
         if !t.cycle.iter().all(|h| self.uses[h.segment] < Self::room(g, h.segment)) {
-            return false;
+            return;
         }
         // Against each kept patch on its segments: the relative orientation (`true`: one of
         // the two must be turned over, they run along the segment the same way) and the fold.
@@ -266,7 +266,7 @@ impl Kept {
             }
         }
         if folds || !self.parity.consistent(&links) {
-            return false;
+            return;
         }
         let f = self.parity.push();
         links.iter().for_each(|&(j, turn)| self.parity.union(f, j, turn));
@@ -280,7 +280,6 @@ impl Kept {
             inward: t.inward.clone(),
             cost,
         });
-        true
     }
 }
 

@@ -287,10 +287,10 @@ impl<'a> Walker<'a> {
             // A deeper level finds the shallower one's faces again first: they are not counted.
             search.want = want + before;
             self.extend(h0, n0, first, h0, n0, 0.0, &mut partial, &mut search);
+            let seen: Vec<Vec<usize>> = search.found[..before].iter().map(|t| super::key(&t.cycle)).collect();
             let mut k = before;
             while k < search.found.len() {
-                let key = |t: &Trace| t.cycle.iter().map(|h| h.segment).collect::<Vec<_>>();
-                if search.found[..before].iter().any(|t| key(t) == key(&search.found[k])) {
+                if seen.contains(&super::key(&search.found[k].cycle)) {
                     search.found.remove(k);
                 } else {
                     k += 1;
