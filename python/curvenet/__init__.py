@@ -193,7 +193,9 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
     ``spacing`` (target edge length) or ``vertices`` (approximate count, default 20000),
     ``soft`` (soft curve constraints, in input sample spacings), ``iterations`` (3D-operator
     iterations, default 2), and the keyword-only ``patching``, ``inner_steps``,
-    ``tolerance``, ``normal_prior``, ``energy``, ``guide_area``, ``guide_updates``, ``w1``,
+    ``tolerance``, ``normal_prior``, ``fine_solve`` (``"auto"``, ``"two-level"`` or ``"direct"``:
+    the fine level by conjugate gradients preconditioned by the coarse level, less memory),
+    ``energy``, ``guide_area``, ``guide_updates``, ``w1``,
     ``snap``, ``consolidate`` (``"on"``/``"off"``: raw strokes joined, merged and trimmed
     first, :func:`consolidate`), ``gap`` (its tolerance), ``max_memory`` (bytes or ``"4G"``; a run whose estimated peak exceeds it, or the
     memory available, raises ``MemoryError`` before it starts), ``order``, ``ghost_updates``.
@@ -207,7 +209,9 @@ def surface(network, method=None, spacing=None, vertices=None, soft=None, iterat
       ``segments`` (ints); ``spacing`` (the edge length used); ``method``; ``iterations``,
       ``iteration_stop`` (``"converged"``, ``"max-iterations"``, ``"degenerate"``,
       ``"diverging"`` or ``None``), ``iteration_updates`` (list); ``coarse_vertices``,
-      ``coarse_iteration_updates`` (the default's coarse level); ``peak_memory_bytes`` (``None``
+      ``coarse_iteration_updates`` (the default's coarse level); ``fine_cg`` (when the
+      fine level was solved two-level: dict of ``iterations`` per solve, ``fallbacks``, ``residual``;
+      else ``None``); ``peak_memory_bytes`` (``None``
       in Python); ``consolidation`` (dict: ``gap``, ``joined``, ``crossed``, ``merged``, ``trimmed``, ...,
       or ``None``); ``inferred_normals`` (dict of the inference's counts, or ``None`` when every
       normal was given); ``coverage`` (share of the strokes' length near the surface, or

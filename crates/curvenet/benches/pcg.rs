@@ -114,7 +114,7 @@ fn main() {
             let spacing = (area / fine.num_vertices() as f64 * 2.0 / 3f64.sqrt()).sqrt();
             let (ls, w, d) = parts(&fine, mu);
             let first = fine.num_curve;
-            let q = Energy { ls: &ls, w: &w, diagonal: &d, first };
+            let q = Energy::new(&ls, &w, &d, first);
             let free = q.dim();
             let truth = Mat::from_fn(free, 3, |i, c| fine.positions[first + i][c]);
             let mut b = Mat::<f64>::zeros(free, 3);
@@ -131,7 +131,7 @@ fn main() {
             let omega = 1.0 / rho;
             let two = |omega: f64, smoothing: usize| TwoLevel {
                 a: &q,
-                inv_diag: inv_diag.clone(),
+                inv_diag: &inv_diag,
                 omega,
                 smoothing,
                 p: &p,

@@ -314,6 +314,33 @@ fn the_default_converges_with_the_mesh_on_the_coarse_torus() {
 }
 
 #[test]
+fn the_fine_level_solved_two_level_is_the_factorised_surface() {
+    // Closed (one system), open with its borders (the fit's own system) and a tube: the same
+    // mesh, the vertices within 1e-5 of the diagonal of the direct solution's, without a
+    // fallback; the direct mode reports no conjugate gradients.
+    for name in ["sphere", "saddle", "cylinder"] {
+        let net = example(name).unwrap();
+        let direct = surface(&net, &Options::default().with_vertices(6000)).unwrap();
+        let mut options = Options::default().with_vertices(6000);
+        options.set("fine_solve", "two-level").unwrap();
+        let two = surface(&net, &options).unwrap();
+        assert_eq!(two.mesh.faces, direct.mesh.faces, "{name}");
+        let cg = two.stats.fine_cg.as_ref().unwrap_or_else(|| panic!("{name}: no conjugate gradients"));
+        assert!(cg.fallbacks == 0 && cg.iterations.len() >= 2, "{name}: {cg:?}");
+        assert!(direct.stats.fine_cg.is_none(), "{name}");
+        let (lo, hi) = direct
+            .mesh
+            .positions
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| (l.min(*p), h.max(*p)));
+        let diag = lo.distance(hi);
+        let far =
+            two.mesh.positions.iter().zip(&direct.mesh.positions).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+        assert!(far < 1e-5 * diag, "{name}: {far:e} of {diag}");
+    }
+}
+
+#[test]
 fn the_statistics_report_the_coarse_level() {
     // The default iterates a coarse level at twice the spacing (about a quarter of the
     // vertices) and the fine mesh starts there; the single pass has none.

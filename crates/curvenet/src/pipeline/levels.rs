@@ -18,16 +18,17 @@ use super::prepare::{fold_warnings, manifold, planar_stage, segment_layout, Prog
 use super::stats::{CoarseLevel, Timings};
 use crate::error::{Error, Result, Warning};
 use crate::geom::mesh::{surface_area, Mesh};
-use crate::methods::iterated::{Iterated, IterationOptions, IterationParams};
+use crate::methods::iterated::{FineSolve, Iterated, IterationOptions, IterationParams};
 use crate::methods::normal_control::{NormalControl, NormalControlOptions, NormalControlParams};
 use crate::methods::SurfacingMethod;
 use crate::operators::{cotan_operators, Metric};
 use crate::solve::timing::timed;
+use crate::solve::two_level::Coarse;
+use crate::solve::Eliminated;
 use crate::solve::SolveTimings;
-use crate::tessellate::{
-    flatten_patches, tessellate_conformal, transfer_positions, PatchFlattening, VERTICES_PER_AREA,
-};
+use crate::tessellate::{self, flatten_patches, tessellate_conformal, PatchFlattening, VERTICES_PER_AREA};
 use crate::topology::resample::{resample_network, Resampled};
+use std::sync::Arc;
 
 /// A solved coarse level: its curve vertices, its mesh at the solved positions and the
 /// flattening of its disk patches.
@@ -37,6 +38,17 @@ struct Level {
     flat: Vec<Option<PatchFlattening>>,
     /// Largest vertex update of each of its 3D iterations.
     updates: Vec<f64>,
+    /// Its last 3D iteration's factorisations (no creases: on the coarse free vertices), to
+    /// precondition the fine level's (`solve::two_level`).
+    systems: Option<(Eliminated, Option<Eliminated>)>,
+    /// Its propagated normals, with `systems`: the start of the fine level's first normals'
+    /// solve.
+    normals: Option<Vec<crate::geom::DVec3>>,
+    /// With `systems`: whether the fine level uses them only as `fine_solve = auto` decides
+    /// ([`FineSolve::Auto`]: from its vertex count and this level's convergence).
+    auto: bool,
+    /// Its spacing.
+    spacing: f64,
 }
 
 /// 3D iterations on the fine level after the coarse level iterated: one (one factorisation).
@@ -88,6 +100,7 @@ fn solve_level(
     let mut first = method.solve(solved, &ops, st)?;
     drop(ops);
     let mut updates = Vec::new();
+    let (mut systems, mut normals) = (None, None);
     if iterations > 0 {
         let area = surface_area(&solved.faces, &first.positions);
         let params = IterationParams {
@@ -107,6 +120,10 @@ fn solve_level(
         })?;
         first = result;
         updates = report.updates;
+        if seams.is_none() && options.iterate.fine_solve != FineSolve::Direct {
+            systems = iterated.take_systems();
+            normals = first.propagated_normals.clone();
+        }
     }
     let positions = match &seams {
         Some(s) => s.merge(&first.positions),
@@ -114,7 +131,8 @@ fn solve_level(
     };
     let mesh = Mesh { positions, ..mesh };
     let flat = timed(&mut timings.tessellate, || flatten_patches(&topo.patches, &res, &mesh));
-    Ok(Level { res, mesh, flat, updates })
+    let auto = options.iterate.fine_solve == FineSolve::Auto;
+    Ok(Level { res, mesh, flat, updates, systems, normals, auto, spacing })
 }
 
 /// The level at spacing `d` tessellated in the flattening of `prev`: its curve vertices, mesh
@@ -174,7 +192,7 @@ pub(super) fn conformal_stage(
             let detail = format!("{} vertices, up to {iterations} 3D iterations", c.mesh.num_vertices());
             progress("coarse level", st.operators + st.factor + st.solve, &detail);
         }
-        match coarse.and_then(|c| fine_level(topo, d, size, &c, true, timings, progress)) {
+        match coarse.and_then(|c| fine_level(topo, d, size, c, true, timings, progress)) {
             // The path without coarse iterations reports its own errors, if any.
             Err(Error::Topology { .. } | Error::Numerical { .. }) => {}
             other => return other,
@@ -182,17 +200,18 @@ pub(super) fn conformal_stage(
     }
     let first = planar_level(topo, 2.0 * d, timings)?;
     let coarse = solve_level(topo, options, first, 0, 2.0 * d, timings, st, &mut *progress)?;
-    fine_level(topo, d, size, &coarse, false, timings, progress)
+    fine_level(topo, d, size, coarse, false, timings, progress)
 }
 
 /// The fine level at spacing `d` (or at the target vertex count of `size` over the flattened
 /// areas) tessellated in the flattening of `coarse`, its free vertices started on the coarse
-/// surface when `transfer`.
+/// surface when `transfer`, with the coarse level's factorisations to precondition its
+/// systems when it kept them.
 fn fine_level(
     topo: &mut Topology,
     d: f64,
     size: Option<(&SizeModel, usize)>,
-    coarse: &Level,
+    mut coarse: Level,
     transfer: bool,
     timings: &mut Timings,
     progress: Progress<'_>,
@@ -206,11 +225,12 @@ fn fine_level(
         }
         None => d,
     };
-    let (res, mut mesh, kept) = conformal_level(topo, d, coarse, timings)?;
+    let (res, mut mesh, kept) = conformal_level(topo, d, &coarse, timings)?;
     progress("resample", timings.resample, &format!("spacing {d:.4e}, {} curve vertices", res.positions.len()));
+    let mut locations = Vec::new();
     if transfer {
-        mesh.positions =
-            timed(&mut timings.tessellate, || transfer_positions(&coarse.mesh, &coarse.flat, &kept, &mesh));
+        (mesh.positions, locations) =
+            timed(&mut timings.tessellate, || tessellate::transfer(&coarse.mesh, &coarse.flat, &kept, &mesh));
     }
     for w in fold_warnings(&coarse.mesh).into_iter().chain(fold_warnings(&mesh)) {
         if !topo.warnings.contains(&w) {
@@ -226,7 +246,18 @@ fn fine_level(
     let seams = timed(&mut timings.tessellate, || topo.seams(&res, &mesh));
     let detail = format!("conformal: {} vertices, {} faces", mesh.num_vertices(), mesh.faces.len());
     progress("tessellate", timings.tessellate, &detail);
+    // `auto`: two-level on large meshes whose coarse level converged (FineSolve::Auto).
+    let converged = coarse.updates.last().is_some_and(|u| *u <= FineSolve::CONVERGED * coarse.spacing);
+    let wanted = !coarse.auto || (mesh.num_vertices() >= FineSolve::AUTO_FROM && converged);
+    let system = match coarse.systems.take() {
+        Some(systems) if transfer && seams.is_none() && wanted => {
+            let sizes = |m: &Mesh| (m.num_curve, m.num_vertices());
+            let normals = coarse.normals.take();
+            Coarse::new(&locations, sizes(&mesh), sizes(&coarse.mesh), systems, normals.as_deref()).map(Arc::new)
+        }
+        _ => None,
+    };
     let coarse =
-        transfer.then(|| CoarseLevel { vertices: coarse.mesh.num_vertices(), updates: coarse.updates.clone() });
+        transfer.then(|| CoarseLevel { vertices: coarse.mesh.num_vertices(), updates: coarse.updates.clone(), system });
     Ok((mesh, seams, d, segment_layout(&topo.g, &res), coarse))
 }

@@ -11,7 +11,7 @@
 use crate::error::{Error, Result};
 use crate::methods::andrews2011::CauchyOptions;
 use crate::methods::eg2016::ShortPaperOptions;
-use crate::methods::iterated::IterationOptions;
+use crate::methods::iterated::{FineSolve, IterationOptions};
 use crate::methods::normal_control::NormalControlOptions;
 use crate::methods::{Energy, GuideArea, Method};
 use crate::topology::consolidate::ConsolidateOptions;
@@ -129,7 +129,7 @@ pub struct Options {
     /// normal-control: `energy`, `guide_area`, `guide_updates`.
     pub normal_control: NormalControlOptions,
     /// The 3D iterations of normal-control: `iterations`, `inner_steps`, `tolerance`,
-    /// `normal_prior`.
+    /// `normal_prior`, `fine_solve`.
     pub iterate: IterationOptions,
     /// short-paper: `w1`.
     pub short_paper: ShortPaperOptions,
@@ -498,6 +498,23 @@ pub const OPTIONS: &[OptionSpec] = &[
             Ok(())
         },
         get: |o| Some(text(o.iterate.normal_prior)),
+    },
+    OptionSpec {
+        name: "fine_solve",
+        value_name: "auto|two-level|direct",
+        choices: &["auto", "two-level", "direct"],
+        help: "How the default's fine level solves its 3D iteration's systems: by conjugate gradients \
+               preconditioned by the coarse level's factorisation (two-level: no fine factorisation, a \
+               quarter less peak memory; a solve that does not converge is factorised instead), by a \
+               factorisation of its own (direct), or two-level from 400k vertices when the coarse level \
+               converged (auto).",
+        unset: None,
+        aliases: &[],
+        set: |o, v| {
+            o.iterate.fine_solve = choice(&FineSolve::ALL, FineSolve::name, v, "auto, two-level or direct")?;
+            Ok(())
+        },
+        get: |o| Some(o.iterate.fine_solve.name().to_string()),
     },
     OptionSpec {
         name: "energy",

@@ -9,7 +9,7 @@ use crate::error::{Error, Result, Warning};
 use crate::geom::mesh::Mesh;
 use crate::methods::andrews2011::Andrews2011;
 use crate::methods::eg2016::{ShortPaper, ShortPaperParams};
-use crate::methods::iterated::{Iterated, IterationOptions, IterationParams, Stop};
+use crate::methods::iterated::{CgCounts, Iterated, IterationOptions, IterationParams, Stop};
 use crate::methods::method4::Method4;
 use crate::methods::normal_control::{NormalControl, NormalControlParams};
 use crate::methods::polyharmonic::Polyharmonic;
@@ -164,13 +164,13 @@ pub(crate) fn solve_prepared(
             state.iterated = None;
         }
     }
-    let mut iteration_report: (Vec<f64>, Option<Stop>) = (Vec::new(), None);
+    let mut iteration_report: (Vec<f64>, Option<Stop>, CgCounts) = (Vec::new(), None, CgCounts::default());
     let mut result;
     // The coarse level's figures, when the fine level started on it.
     let coarse = from_coarse.as_ref().and(prepared.coarse.clone());
     if let Some((r, report)) = from_coarse {
         result = r;
-        iteration_report = (report.updates, Some(report.stop));
+        iteration_report = (report.updates, Some(report.stop), report.cg);
     } else {
         let ops = match ops {
             Some(ops) => ops,
@@ -202,7 +202,7 @@ pub(crate) fn solve_prepared(
             Stop::Diverging => warnings.push(stopped("its updates grew")),
             Stop::Converged | Stop::MaxIterations => {}
         }
-        iteration_report = (report.updates, Some(report.stop));
+        iteration_report = (report.updates, Some(report.stop), report.cg);
     }
     if keep {
         state.last = Some(result.positions.clone());
@@ -261,6 +261,10 @@ fn iterate(
     let iterated = state.iterated.get_or_insert_with(|| Iterated::new(params));
     iterated.params = params;
     iterated.keep_operators = state.keep;
+    // A one-shot run's fine level: conjugate gradients preconditioned by the coarse level
+    // instead of a factorisation, when the levels kept it for that (`fine_solve`; a Surfacer
+    // keeps factorisations for its re-solves).
+    iterated.coarse = prepared.coarse.as_ref().and_then(|c| c.system.clone()).filter(|_| from_coarse && !state.keep);
     let clock = Instant::now();
     iterated.run_reporting(mesh, result, st, &mut |k, of, update| {
         progress("iteration", seconds_since(clock), &format!("{k} of at most {of}, largest move {update:.2e}"));
@@ -274,7 +278,7 @@ fn finish(
     prepared: Cow<'_, Prepared>,
     options: &Options,
     result: MethodResult,
-    (iteration_report, coarse): ((Vec<f64>, Option<Stop>), Option<CoarseLevel>),
+    (iteration_report, coarse): ((Vec<f64>, Option<Stop>, CgCounts), Option<CoarseLevel>),
     warnings: Vec<Warning>,
     mut timings: Timings,
     base: Timings,
@@ -303,6 +307,7 @@ fn finish(
         iteration_updates: iteration_report.0,
         coarse_vertices: coarse.as_ref().map_or(0, |c| c.vertices),
         coarse_iteration_updates: coarse.map_or_else(Vec::new, |c| c.updates),
+        fine_cg: (!iteration_report.2.iterations.is_empty()).then_some(iteration_report.2),
         inferred_normals: None,
         consolidation: None,
         coverage: None,

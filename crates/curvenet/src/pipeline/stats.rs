@@ -8,12 +8,15 @@ use crate::io::MeshData;
 use serde::Serialize;
 
 /// The coarse level of a run (`pipeline::levels`), for the statistics.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default)]
 pub(crate) struct CoarseLevel {
     /// Its vertices.
     pub(crate) vertices: usize,
     /// Largest vertex update of each of its 3D iterations.
     pub(crate) updates: Vec<f64>,
+    /// Its factorisations and the prolongation to the fine level, when they precondition the
+    /// fine level's systems (`solve::two_level`).
+    pub(crate) system: Option<std::sync::Arc<crate::solve::two_level::Coarse>>,
 }
 
 /// Seconds per stage.
@@ -78,6 +81,10 @@ pub struct Stats {
     /// Largest vertex update of each 3D iteration of the coarse level (`iterations` counts
     /// the fine level's).
     pub coarse_iteration_updates: Vec<f64>,
+    /// The fine level's systems solved by two-level conjugate gradients (`fine_solve =
+    /// two-level`, the default): iterations per solve, fallbacks to a factorisation, the
+    /// largest final residual. `None` when they were factorised.
+    pub fine_cg: Option<crate::methods::iterated::CgCounts>,
     /// Peak resident memory of the process in bytes, when the front end measured it.
     pub peak_memory_bytes: Option<u64>,
     /// What the normal inference found, when curves came without normals (or with

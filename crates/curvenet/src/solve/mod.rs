@@ -9,6 +9,8 @@
 //! - [`lu`]: sparse LU for the non-symmetric ones (the Andrews et al. system).
 //! - [`ordering`]: fill-reducing orderings (nested dissection by levels and along patches).
 //! - [`sparse`]: the compressed-column matrix and the products `A diag(d) B` the energies need.
+//! - [`pcg`], [`two_level`]: conjugate gradients, and the fine level's systems solved by them
+//!   with the coarse level's factorisation as a two-level preconditioner (issue 31).
 //! - [`timing`]: the stage clock (also on WebAssembly).
 //!
 //! [`Cholesky`] and [`Lu`] are used through one trait, [`Factorization`].
@@ -23,6 +25,7 @@ pub mod sparse;
 pub mod system;
 pub mod timing;
 mod tree_solve;
+pub mod two_level;
 
 pub use cholesky::{Cholesky, Ordering};
 pub use lu::Lu;

@@ -2,7 +2,7 @@
 //! need, assembled directly in compressed form (Gustavson's column-by-column algorithm) rather
 //! than through triplets.
 
-use faer::{MatMut, MatRef};
+use faer::{Mat, MatMut, MatRef};
 use rayon::prelude::*;
 
 /// A sparse matrix in compressed-column form; row indices sorted within each column.
@@ -38,6 +38,19 @@ impl Csc {
         match rows.binary_search(&(i as u32)) {
             Ok(k) => vals[k],
             Err(_) => 0.0,
+        }
+    }
+
+    /// `y = Aᵀ x` for dense `x` (`nrows × k`) and `y` (`ncols × k`): one gather per column of
+    /// `A`, columns in parallel (the two-level cycle's restriction and, through the stored
+    /// transpose, its prolongation).
+    pub fn tr_mul_dense(&self, x: &Mat<f64>, y: &mut Mat<f64>) {
+        for c in 0..x.ncols() {
+            let xc = x.col_as_slice(c);
+            y.col_as_slice_mut(c).par_iter_mut().with_min_len(8192).enumerate().for_each(|(j, yj)| {
+                let (rows, vals) = self.col(j);
+                *yj = rows.iter().zip(vals).map(|(&i, &v)| v * xc[i as usize]).sum();
+            });
         }
     }
 

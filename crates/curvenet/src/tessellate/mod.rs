@@ -41,7 +41,7 @@ mod triangulate;
 mod tube;
 
 pub use flatten::{flatten_patches, PatchFlattening};
-pub use transfer::transfer_positions;
+pub use transfer::{transfer, transfer_positions};
 
 use crate::error::Result;
 use crate::geom::mesh::Mesh;

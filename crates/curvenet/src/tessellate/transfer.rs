@@ -15,6 +15,7 @@
 use super::PatchFlattening;
 use crate::geom::mesh::Mesh;
 use crate::geom::{DVec2, DVec3};
+use crate::solve::two_level::Location;
 use rayon::prelude::*;
 
 /// Fine positions from `coarse` (solved): the curve vertices of `fine` as they are, every
@@ -27,6 +28,17 @@ pub fn transfer_positions(
     planar_patches: &[usize],
     fine: &Mesh,
 ) -> Vec<DVec3> {
+    transfer(coarse, flat, planar_patches, fine).0
+}
+
+/// [`transfer_positions`] and the location of each fine vertex it placed: the prolongation
+/// of the two-level solve on the fine level (`solve::two_level`, issue 31).
+pub fn transfer(
+    coarse: &Mesh,
+    flat: &[Option<PatchFlattening>],
+    planar_patches: &[usize],
+    fine: &Mesh,
+) -> (Vec<DVec3>, Vec<Location>) {
     let patches = flat.len();
     // Coarse triangles per patch, with their domain corners.
     let mut coarse_of: Vec<Vec<usize>> = vec![Vec::new(); patches];
@@ -50,11 +62,11 @@ pub fn transfer_positions(
         }
     }
     let normals = crate::operators::vertex_normals(&coarse.faces, &coarse.positions);
-    let placed: Vec<Vec<(usize, DVec3)>> = (0..patches)
+    let placed: Vec<Vec<(usize, DVec3, Location)>> = (0..patches)
         .into_par_iter()
         .map(|p| {
             let uv = flat[p].as_ref().filter(|_| !planar_patches.contains(&p));
-            let tris: Vec<([DVec2; 3], Corners)> = coarse_of[p]
+            let tris: Vec<([DVec2; 3], Corners, [u32; 3])> = coarse_of[p]
                 .iter()
                 .filter_map(|&f| {
                     let t = coarse.faces[f];
@@ -66,18 +78,26 @@ pub fn transfer_positions(
                     let face = (x[1] - x[0]).cross(x[2] - x[0]).normalize_or_zero();
                     // Curve vertices (creases among them) take the triangle's own normal.
                     let n = t.map(|v| if (v as usize) < coarse.num_curve { face } else { normals[v as usize] });
-                    Some((corners, (x, n)))
+                    Some((corners, (x, n), t))
                 })
                 .collect();
             let grid = Grid::new(&tris);
-            fine_of[p].iter().filter_map(|&(v, q)| grid.blend(&tris, q).map(|x| (v, x))).collect()
+            fine_of[p]
+                .iter()
+                .filter_map(|&(v, q)| {
+                    let (w, i) = grid.locate(&tris, q)?;
+                    Some((v, phong(w, &tris[i].1), (v as u32, tris[i].2, w)))
+                })
+                .collect()
         })
         .collect();
     let mut positions = fine.positions.clone();
-    for (v, x) in placed.into_iter().flatten() {
+    let mut locations = Vec::with_capacity(fine.num_vertices() - fine.num_curve);
+    for (v, x, at) in placed.into_iter().flatten() {
         positions[v] = x;
+        locations.push(at);
     }
-    positions
+    (positions, locations)
 }
 
 /// A coarse triangle's corners and their unit normals.
@@ -118,9 +138,9 @@ struct Grid {
 }
 
 impl Grid {
-    fn new(tris: &[([DVec2; 3], Corners)]) -> Self {
+    fn new(tris: &[([DVec2; 3], Corners, [u32; 3])]) -> Self {
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-        for (t, _) in tris {
+        for (t, _, _) in tris {
             for q in t {
                 lo = lo.min(*q);
                 hi = hi.max(*q);
@@ -135,7 +155,7 @@ impl Grid {
             (1, 1)
         };
         let mut grid = Grid { lo, cell, nx, ny, cells: vec![Vec::new(); nx * ny] };
-        for (i, (t, _)) in tris.iter().enumerate() {
+        for (i, (t, _, _)) in tris.iter().enumerate() {
             let (a, b) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
             let (x0, y0) = grid.index(a);
             let (x1, y1) = grid.index(b);
@@ -154,9 +174,15 @@ impl Grid {
         (clamp(r.x, self.nx), clamp(r.y, self.ny))
     }
 
-    /// The blend at `q` of the triangle that holds it, else of the nearest one found in the
-    /// cells around (barycentric coordinates clamped to the triangle).
-    fn blend(&self, tris: &[([DVec2; 3], Corners)], q: DVec2) -> Option<DVec3> {
+    /// The blend at `q` of the triangle [`Grid::locate`] finds.
+    #[cfg(test)]
+    fn blend(&self, tris: &[([DVec2; 3], Corners, [u32; 3])], q: DVec2) -> Option<DVec3> {
+        self.locate(tris, q).map(|(w, i)| phong(w, &tris[i].1))
+    }
+
+    /// The triangle that holds `q` and the barycentric coordinates of `q` in it, else the
+    /// nearest triangle found in the cells around (coordinates clamped to the triangle).
+    fn locate(&self, tris: &[([DVec2; 3], Corners, [u32; 3])], q: DVec2) -> Option<([f64; 3], usize)> {
         let (x, y) = self.index(q);
         let mut best: Option<(f64, [f64; 3], usize)> = None;
         for ring in 0..self.nx.max(self.ny) {
@@ -184,7 +210,7 @@ impl Grid {
         let (_, w, i) = best?;
         let w = w.map(|c| c.max(0.0));
         let s = w[0] + w[1] + w[2];
-        (s > 0.0).then(|| phong(w.map(|c| c / s), &tris[i].1))
+        (s > 0.0).then(|| (w.map(|c| c / s), i))
     }
 }
 

@@ -63,7 +63,8 @@ fn a_two_level_cycle_with_an_exact_coarse_level_is_exact() {
     let coarse = Eliminated::factor(&lower(&a), 0, None, "test").unwrap();
     let b = rhs(n);
     for (smoothing, omega) in [(0, 0.0), (1, 0.5), (2, 0.7)] {
-        let m = TwoLevel { a: &a, inv_diag: vec![1.0 / 4.2; n], omega, smoothing, p: &id, pt: &id, coarse: &coarse };
+        let inv_diag = vec![1.0 / 4.2; n];
+        let m = TwoLevel { a: &a, inv_diag: &inv_diag, omega, smoothing, p: &id, pt: &id, coarse: &coarse };
         let mut x = Mat::<f64>::zeros(n, 3);
         let report = pcg(&a, &m, b.as_ref(), x.as_mut(), 1e-10, 50);
         assert!(report.converged && report.iterations == 1, "smoothing {smoothing}: {report:?}");
@@ -78,7 +79,7 @@ fn the_energy_operator_is_the_assembled_product() {
     let first = 5;
     let w: Vec<f64> = (0..n).map(|i| 1.0 + (i % 7) as f64 * 0.1).collect();
     let diagonal: Vec<f64> = (0..n).map(|i| 0.01 * (i % 3) as f64).collect();
-    let e = Energy { ls: &ls, w: &w, diagonal: &diagonal, first };
+    let e = Energy::new(&ls, &w, &diagonal, first);
     let mut q = product(&ls, &w, &ls, first);
     q.add_diagonal(&diagonal[first..]);
     let x = rhs(n - first);

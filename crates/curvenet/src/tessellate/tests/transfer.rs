@@ -1,10 +1,13 @@
 use super::*;
 
 /// The unit square in two triangles, lifted by an affine map.
-fn square(lift: impl Fn(DVec2) -> DVec3) -> Vec<([DVec2; 3], Corners)> {
+fn square(lift: impl Fn(DVec2) -> DVec3) -> Vec<([DVec2; 3], Corners, [u32; 3])> {
     let q = [DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.0), DVec2::new(1.0, 1.0), DVec2::new(0.0, 1.0)];
     let n = (lift(q[1]) - lift(q[0])).cross(lift(q[3]) - lift(q[0])).normalize();
-    [[0, 1, 2], [0, 2, 3]].iter().map(|t| (t.map(|i| q[i]), (t.map(|i| lift(q[i])), [n; 3]))).collect()
+    [[0, 1, 2], [0, 2, 3]]
+        .iter()
+        .map(|t| (t.map(|i| q[i]), (t.map(|i| lift(q[i])), [n; 3]), t.map(|i| i as u32)))
+        .collect()
 }
 
 fn affine(q: DVec2) -> DVec3 {
