@@ -120,7 +120,8 @@ fn solve_level(
         })?;
         first = result;
         updates = report.updates;
-        if seams.is_none() && options.iterate.fine_solve != FineSolve::Direct {
+        // Not with soft constraints: the fine level's unknowns are then every vertex.
+        if seams.is_none() && options.soft.is_none() && options.iterate.fine_solve != FineSolve::Direct {
             systems = iterated.take_systems();
             normals = first.propagated_normals.clone();
         }

@@ -82,8 +82,9 @@ pub struct Stats {
     /// the fine level's).
     pub coarse_iteration_updates: Vec<f64>,
     /// The fine level's systems solved by two-level conjugate gradients (`fine_solve =
-    /// two-level`, the default): iterations per solve, fallbacks to a factorisation, the
-    /// largest final residual. `None` when they were factorised.
+    /// two-level`, or `auto` from 400k vertices when the coarse level converged): iterations
+    /// per solve, fallbacks to a factorisation, the largest final residual. `None` when they
+    /// were factorised.
     pub fine_cg: Option<crate::methods::iterated::CgCounts>,
     /// Peak resident memory of the process in bytes, when the front end measured it.
     pub peak_memory_bytes: Option<u64>,

@@ -68,7 +68,12 @@ impl Surfacer {
     pub fn new(network: &Network, options: &Options) -> Result<Self> {
         let consolidated = super::consolidate(network, options, &mut |_, _, _| {})?;
         let network = consolidated.as_ref().filter(|c| c.changed()).map_or(network, |c| &c.network);
-        let (inferred, prepared) = super::infer::infer_and_prepare(network, options, &mut |_, _, _| {})?;
+        let (inferred, mut prepared) = super::infer::infer_and_prepare(network, options, &mut |_, _, _| {})?;
+        // Its solves keep factorisations for the re-solves: the coarse level's, kept for a
+        // two-level fine solve, would only add to the peak.
+        if let Some(c) = prepared.coarse.as_mut() {
+            c.system = None;
+        }
         let (network, inferred, cycles) = match inferred {
             Some(i) => (i.network, Some((i.report, i.warnings)), i.cycles),
             None => (network.clone(), None, None),

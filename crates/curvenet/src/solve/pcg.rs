@@ -307,7 +307,8 @@ pub struct CgReport {
     pub iterations: usize,
     /// The largest relative residual `‖b − A x‖ / ‖b‖` over the columns, after each iteration.
     pub residuals: Vec<f64>,
-    /// Whether every column reached the tolerance.
+    /// Whether every column reached the residual tolerance, or an iteration's step fell
+    /// below [`Until::step`].
     pub converged: bool,
 }
 
@@ -392,7 +393,7 @@ pub fn pcg_until(
         report.iterations += 1;
         let res = relative(&r);
         report.residuals.push(res);
-        if res <= until.residual || step <= until.step {
+        if res <= until.residual || (until.step > 0.0 && step <= until.step) {
             report.converged = true;
             break;
         }

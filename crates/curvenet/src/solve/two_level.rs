@@ -9,7 +9,7 @@
 //! normals' system and one of the fit's, `Q = Ls W Ls + μ M` on the free vertices with
 //! `W = M⁻¹` or the fit's row weights. With a direct solver that iteration is one fine
 //! factorisation — most of a large run's time and memory. Here each solve is [`pcg_until`]
-//! with [`TwoLevel`] (damped Jacobi, `ω = 1 / λ_max(D⁻¹Q)`, [`SMOOTHING`] steps before and
+//! with [`TwoLevel`] (damped Jacobi, `ω = 1 / (1.05 λ_max(D⁻¹Q))`, [`SMOOTHING`] steps before and
 //! after the coarse correction), started from the last solution (the prior normals, the
 //! current positions), stopped when an iteration moves no unknown by more than the caller's
 //! step (the 3D iterations stop on vertex moves too) or at a relative residual of
@@ -89,11 +89,16 @@ impl Coarse {
         }
         let mut t = Vec::with_capacity(3 * locations.len());
         let coarse_normals = coarse_normals.filter(|n| n.len() == coarse_n);
-        let mut normals_start = coarse_normals.map(|_| Mat::<f64>::zeros(fine_n - fine_first, 3));
+        let mut normals_start = coarse_normals.map(|_| Mat::<f64>::zeros(fine_n.saturating_sub(fine_first), 3));
+        let fine_free = fine_n.checked_sub(fine_first)?;
         for &(v, corners, w) in locations {
-            let row = (v as usize).checked_sub(fine_first).filter(|&r| r < fine_n - fine_first)?;
+            let row = (v as usize).checked_sub(fine_first).filter(|&r| r < fine_free)?;
             if let (Some(start), Some(nc)) = (normals_start.as_mut(), coarse_normals) {
-                let n = corners.iter().zip(&w).map(|(&c, &x)| x * nc[c as usize]).sum::<DVec3>().normalize_or_zero();
+                let mut n = DVec3::ZERO;
+                for (&c, &x) in corners.iter().zip(&w) {
+                    n += x * *nc.get(c as usize)?;
+                }
+                let n = n.normalize_or_zero();
                 for c in 0..3 {
                     start[(row, c)] = n[c];
                 }
@@ -105,8 +110,8 @@ impl Coarse {
                 }
             }
         }
-        let pt = Csc::from_triplets(free, fine_n - fine_first, t.iter().map(|&(i, j, v)| (j, i, v)).collect());
-        let p = Csc::from_triplets(fine_n - fine_first, free, t);
+        let pt = Csc::from_triplets(free, fine_free, t.iter().map(|&(i, j, v)| (j, i, v)).collect());
+        let p = Csc::from_triplets(fine_free, free, t);
         Some(Coarse { p, pt, normals, fit, normals_start })
     }
 }
