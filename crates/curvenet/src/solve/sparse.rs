@@ -279,3 +279,18 @@ pub(crate) fn grid_laplacian(k: usize, diagonal: f64) -> Csc {
     }
     Csc::from_triplets(k * k, k * k, t)
 }
+
+/// The lower triangle of `a` (what the Cholesky factorisation takes), for the solver tests.
+#[cfg(test)]
+pub(crate) fn lower_triangle(a: &Csc) -> Csc {
+    let mut t = Vec::new();
+    for j in 0..a.ncols {
+        let (rows, vals) = a.col(j);
+        for (&i, &v) in rows.iter().zip(vals) {
+            if i as usize >= j {
+                t.push((i, j as u32, v));
+            }
+        }
+    }
+    Csc::from_triplets(a.nrows, a.ncols, t)
+}

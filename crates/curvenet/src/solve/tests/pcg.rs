@@ -1,19 +1,5 @@
 use super::*;
-use crate::solve::sparse::{grid_laplacian, product};
-
-/// The lower triangle of `a` (what the Cholesky factorisation takes).
-fn lower(a: &Csc) -> Csc {
-    let mut t = Vec::new();
-    for j in 0..a.ncols {
-        let (rows, vals) = a.col(j);
-        for (&i, &v) in rows.iter().zip(vals) {
-            if i as usize >= j {
-                t.push((i, j as u32, v));
-            }
-        }
-    }
-    Csc::from_triplets(a.nrows, a.ncols, t)
-}
+use crate::solve::sparse::{grid_laplacian, lower_triangle as lower, product};
 
 /// Three deterministic right-hand sides.
 fn rhs(n: usize) -> Mat<f64> {

@@ -1,19 +1,5 @@
 use super::*;
-use crate::solve::sparse::grid_laplacian;
-
-/// The lower triangle of `a` (what the Cholesky factorisation takes).
-fn lower(a: &Csc) -> Csc {
-    let mut t = Vec::new();
-    for j in 0..a.ncols {
-        let (rows, vals) = a.col(j);
-        for (&i, &v) in rows.iter().zip(vals) {
-            if i as usize >= j {
-                t.push((i, j as u32, v));
-            }
-        }
-    }
-    Csc::from_triplets(a.nrows, a.ncols, t)
-}
+use crate::solve::sparse::{grid_laplacian, lower_triangle as lower};
 
 /// `Ls W Ls + diag` assembled (both triangles) on the rows `first..`.
 fn assembled(ls: &Csc, w: &[f64], diagonal: &[f64], first: usize) -> Csc {
