@@ -25,13 +25,13 @@
 //! updates grow (divergence).
 
 use super::normal_control::{fit_weights, seam_normal_targets, seam_targets};
-use super::{check_finite, factor_on, known_rows, scatter, Energy, GuideArea, MethodResult};
+use super::{check_finite, factor_like, factor_on, known_rows, scatter, Energy, GuideArea, MethodResult};
 use crate::error::{Error, Result};
 use crate::geom::mesh::Mesh;
 use crate::geom::DVec3;
 use crate::operators::{blended_mean_curvature, cotan_operators, vertex_normals, Metric, Operators};
 use crate::solve::pcg::Energy as Quadratic;
-use crate::solve::sparse::{product_lower, Csc};
+use crate::solve::sparse::{product_lower, product_lower_keeping_pattern, Csc};
 use crate::solve::timing::timed;
 use crate::solve::two_level::{Coarse, FineSystem};
 use crate::solve::{Eliminated, LeastSquares, SolveTimings};
@@ -391,11 +391,13 @@ impl Iterated {
         let fit_own = if closed && params.energy == Energy::Area {
             None
         } else {
-            let qf =
-                timed(&mut t.operators, || step.with_prox(product_lower(&step.ops.ls, &step.w, &step.ops.ls, first)));
+            let qf = timed(&mut t.operators, || {
+                step.with_prox(product_lower_keeping_pattern(&step.ops.ls, &step.w, &step.ops.ls, first))
+            });
+            // The normals' system's symbolic analysis, shared (the same pattern).
             Some(timed(&mut t.factor, || match kept.as_ref().and_then(|k| k.1.as_ref()) {
                 Some(c) => c.refactor(&qf, "iterated fit system"),
-                None => factor_on(mesh, &qf, first, "iterated fit system"),
+                None => factor_like(mesh, &qf, first, "iterated fit system", Some(&normals_system)),
             })?)
         };
         let fit = fit_own.as_ref().unwrap_or(&normals_system);

@@ -214,6 +214,30 @@ pub(crate) fn factor_on(mesh: &Mesh, q: &Csc, first: usize, what: &str) -> Resul
     Eliminated::factor(q, first, parts.as_deref(), what)
 }
 
+/// [`factor_on`], sharing the symbolic analysis (ordering, elimination tree, supernodes) of
+/// `like` when `q` has its unknowns and pattern — the result is the one [`factor_on`] gives,
+/// without the analysis: the fit systems on the propagation system's pattern
+/// ([`crate::solve::sparse::product_lower_keeping_pattern`]).
+pub(crate) fn factor_like(
+    mesh: &Mesh,
+    q: &Csc,
+    first: usize,
+    what: &str,
+    like: Option<&Eliminated>,
+) -> Result<Eliminated> {
+    match like {
+        // A failed pivot names its patch, as with factor_on.
+        Some(l) if l.same_pattern(q, first) => l.refactor(q, what).map_err(|e| {
+            let patch = e.at().vertex.and_then(|v| mesh.free_vertex_patches().get(v.wrapping_sub(first)).copied());
+            match patch {
+                Some(p) if first == mesh.num_curve => e.patch(p as usize),
+                _ => e,
+            }
+        }),
+        _ => factor_on(mesh, q, first, what),
+    }
+}
+
 pub(crate) fn check_finite(p: &[DVec3], what: &str) -> crate::error::Result<()> {
     if let Some(i) = p.iter().position(|v| !v.is_finite()) {
         return Err(crate::error::Error::numerical(format!(

@@ -24,12 +24,14 @@
 //!    one the fit's Laplacian sees.
 //! 5. Soft constraints (\[CG\] §4.5): `+ ω_s Σ_{s ∈ curve} ‖v_s − v*_s‖²`, all vertices unknown.
 
-use super::{check_finite, factor_on, known_rows, scatter, Energy, GuideArea, MethodResult, SurfacingMethod};
+use super::{
+    check_finite, factor_like, factor_on, known_rows, scatter, Energy, GuideArea, MethodResult, SurfacingMethod,
+};
 use crate::error::{Error, Result};
 use crate::geom::mesh::Mesh;
 use crate::geom::{fmt_point, DVec3};
 use crate::operators::{blended_mean_curvature, mixed_areas, Operators};
-use crate::solve::sparse::product_lower;
+use crate::solve::sparse::product_lower_keeping_pattern;
 use crate::solve::timing::{seconds_since, timed, Instant};
 use crate::solve::{Eliminated, LeastSquares, SolveTimings};
 use faer::Mat;
@@ -265,7 +267,8 @@ fn normal_control_cached(
     let fit_energy = LeastSquares { a: &ops.ls, w: &w, first };
     let reuse = params.soft_weight.is_none() && params.options.energy == Energy::Area && !left_out.iter().any(|&b| b);
     if !(reuse && prop.is_some()) && kept.fit.is_none() {
-        let mut q = product_lower(&ops.ls, &w, &ops.ls, first);
+        // On the propagation system's pattern: its symbolic analysis is shared.
+        let mut q = product_lower_keeping_pattern(&ops.ls, &w, &ops.ls, first);
         if let Some(omega) = params.soft_weight {
             let mut diag = vec![0.0; n];
             diag[..nc].iter_mut().for_each(|d| *d = omega);
@@ -274,7 +277,7 @@ fn normal_control_cached(
         t.operators += seconds_since(clock);
         let what =
             if params.soft_weight.is_some() { "soft-constrained system" } else { "fit system (L V = −2 H N*)" };
-        kept.fit = Some(timed(&mut t.factor, || factor_on(mesh, &q, first, what))?);
+        kept.fit = Some(timed(&mut t.factor, || factor_like(mesh, &q, first, what, prop.as_ref()))?);
     }
     let system = match (reuse, prop.as_ref()) {
         (true, Some(p)) => p,

@@ -175,6 +175,12 @@ impl Cholesky {
         Ok(Cholesky { symbolic: Arc::clone(&self.symbolic), pattern: self.pattern, values })
     }
 
+    /// Whether `q` has the sparsity pattern of the matrix this factorisation was computed
+    /// from ([`Cholesky::refactor`] then reuses the symbolic analysis).
+    pub fn same_pattern(&self, q: &Csc) -> bool {
+        fingerprint(q) == self.pattern
+    }
+
     /// Number of non-zeros of the factor `L`.
     pub fn factor_nnz(&self) -> usize {
         self.symbolic.chol.len_val()

@@ -178,16 +178,24 @@ impl Csc {
 /// With `A = B = Ls` symmetric this is the Gram matrix `Σ_k d_k (Ls)_{k·}ᵀ (Ls)_{k·}` of the
 /// weighted least-squares energies, e.g. `Ls M⁻¹ Ls` (docs/design.md §1).
 pub fn product(a: &Csc, d: &[f64], b: &Csc, first: usize) -> Csc {
-    product_impl(a, d, b, first, false)
+    product_impl(a, d, b, first, false, false)
 }
 
 /// The lower triangle (with the diagonal) of [`product`], for symmetric products that are only
 /// factored (the Cholesky factorisation reads the lower triangle): half the work and memory.
 pub fn product_lower(a: &Csc, d: &[f64], b: &Csc, first: usize) -> Csc {
-    product_impl(a, d, b, first, true)
+    product_impl(a, d, b, first, true, false)
 }
 
-fn product_impl(a: &Csc, d: &[f64], b: &Csc, first: usize, lower: bool) -> Csc {
+/// [`product_lower`] with the pattern of the product for non-zero weights: a zero `d[k]` keeps
+/// its entries, as explicit zeros. The fit systems (zero weights on the rows they leave out)
+/// then have the pattern of the propagation system on the same mesh, whose symbolic
+/// analysis their factorisation shares ([`crate::solve::system::Eliminated::refactor`]).
+pub fn product_lower_keeping_pattern(a: &Csc, d: &[f64], b: &Csc, first: usize) -> Csc {
+    product_impl(a, d, b, first, true, true)
+}
+
+fn product_impl(a: &Csc, d: &[f64], b: &Csc, first: usize, lower: bool, keep: bool) -> Csc {
     let n = b.ncols;
     let m = n - first;
     const CHUNK: usize = 2048;
@@ -208,7 +216,7 @@ fn product_impl(a: &Csc, d: &[f64], b: &Csc, first: usize, lower: bool) -> Csc {
                     let (bk, bv) = b.col(j);
                     for (&k, &bkj) in bk.iter().zip(bv) {
                         let w = d[k as usize] * bkj;
-                        if w == 0.0 {
+                        if w == 0.0 && !(keep && bkj != 0.0) {
                             continue;
                         }
                         let (ai, av) = a.col(k as usize);

@@ -109,6 +109,12 @@ impl Eliminated<Cholesky> {
         })?;
         Ok(Eliminated { first, factor })
     }
+
+    /// Whether `q_uu`, on unknowns `first..`, has this factorisation's unknowns and sparsity
+    /// pattern (so that [`Eliminated::refactor`] reuses its symbolic analysis).
+    pub fn same_pattern(&self, q_uu: &Csc, first: usize) -> bool {
+        first == self.first && self.factor.same_pattern(q_uu)
+    }
 }
 
 impl<F: Factorization> Eliminated<F> {

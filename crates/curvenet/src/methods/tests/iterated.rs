@@ -35,3 +35,38 @@ fn reusing_the_first_solves_analysis_changes_nothing() {
     let moved = fresh.0.positions.iter().zip(&first.positions).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
     assert!(moved > 1e-4 * prepared.spacing, "the iterations moved the surface by only {moved:e}");
 }
+
+/// On an open surface the fit system leaves out the border rows (zero weights); kept as
+/// explicit zeros (where a coupling runs through a left-out row only), its pattern is the
+/// propagation system's, whose symbolic analysis its factorisation then shares
+/// (`factor_like`): the same solution as a factorisation of its own, and as the product
+/// without the explicit zeros.
+#[test]
+fn the_fit_shares_the_propagation_systems_analysis() {
+    use crate::methods::normal_control::fit_weights;
+    use crate::methods::{factor_like, factor_on};
+    use crate::solve::sparse::{product_lower, product_lower_keeping_pattern};
+    let network = example("saddle").unwrap();
+    let prepared = prepare(&network, &Options::fast().with_vertices(4000), None, &mut |_, _, _| {}).unwrap();
+    let mesh = &prepared.mesh;
+    let (n, nc) = (mesh.num_vertices(), mesh.num_curve);
+    let ops = cotan_operators(mesh, Metric::Planar, &mesh.positions);
+    let inv_m: Vec<f64> = ops.mass.iter().map(|a| 1.0 / a).collect();
+    let left_out = mesh.fit_row_left_out();
+    assert!(left_out.iter().any(|&b| b), "the saddle's border rows are left out of the fit");
+    let w = fit_weights(&left_out, &inv_m, Energy::Area);
+    let prop = factor_on(mesh, &product_lower(&ops.ls, &inv_m, &ops.ls, nc), nc, "propagation").unwrap();
+    let q = product_lower_keeping_pattern(&ops.ls, &w, &ops.ls, nc);
+    assert!(prop.same_pattern(&q, nc));
+    let plain = product_lower(&ops.ls, &w, &ops.ls, nc);
+    assert!(q.row_idx.len() >= plain.row_idx.len());
+    let shared = factor_like(mesh, &q, nc, "fit", Some(&prop)).unwrap();
+    let own = factor_on(mesh, &q, nc, "fit").unwrap();
+    let without = factor_on(mesh, &plain, nc, "fit").unwrap();
+    let rhs = faer::Mat::<f64>::from_fn(n - nc, 3, |i, c| ((i * 7 + c * 3) % 11) as f64 - 5.0);
+    let (a, b, c) = (shared.solve(rhs.clone()), own.solve(rhs.clone()), without.solve(rhs));
+    let scale = b.norm_max();
+    assert!(scale > 0.0);
+    assert!((&a - &b).norm_max() <= 1e-12 * scale, "the shared analysis changed the solution");
+    assert!((&a - &c).norm_max() <= 1e-8 * scale, "the explicit zeros changed the solution");
+}

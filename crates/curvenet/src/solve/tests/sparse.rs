@@ -52,3 +52,32 @@ fn restrict_and_add() {
     assert_eq!((r.nrows, r.ncols), (2, 2));
     assert_eq!((r.get(0, 0), r.get(0, 1), r.get(1, 0), r.get(1, 1)), (-3.0, -4.0, 0.0, -6.0));
 }
+
+#[test]
+fn a_zero_weight_keeps_its_entries_when_asked() {
+    // A path graph's Laplacian-like matrix: with d[2] = 0 the plain product loses the
+    // coupling of unknowns 1 and 3 through row 2; the pattern-keeping one stores it as an
+    // explicit zero, so that both products with and without the zero weight share a pattern.
+    let a = vec![
+        vec![2.0, -1.0, 0.0, 0.0, 0.0],
+        vec![-1.0, 2.0, -1.0, 0.0, 0.0],
+        vec![0.0, -1.0, 2.0, -1.0, 0.0],
+        vec![0.0, 0.0, -1.0, 2.0, -1.0],
+        vec![0.0, 0.0, 0.0, -1.0, 2.0],
+    ];
+    let ca = from_dense(&a);
+    let zero = [1.0, 0.5, 0.0, 2.0, 1.0];
+    let full = [1.0, 0.5, 3.0, 2.0, 1.0];
+    let plain = product_lower(&ca, &zero, &ca, 1);
+    let kept = product_lower_keeping_pattern(&ca, &zero, &ca, 1);
+    let other = product_lower(&ca, &full, &ca, 1);
+    assert_ne!((&plain.col_ptr, &plain.row_idx), (&other.col_ptr, &other.row_idx));
+    assert_eq!((&kept.col_ptr, &kept.row_idx), (&other.col_ptr, &other.row_idx));
+    // The same values: the kept entries are zeros.
+    for i in 0..4 {
+        for j in 0..=i {
+            assert_eq!(kept.get(i, j), plain.get(i, j), "{i} {j}");
+        }
+    }
+    assert!(kept.row_idx.len() > plain.row_idx.len());
+}
