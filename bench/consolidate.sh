@@ -49,7 +49,7 @@ print(math.dist(lo,hi))")
       $BIN surface "$net" -o "$OUT/s.ply" -q --stats "$OUT/s.stats.json" 2>"$OUT/s.log"
       code=$?
       if [ $code -eq 0 ]; then
-        rms=$($BIN eval "$OUT/s.ply" --truth "data/meshes/$m" --json 2>/dev/null | python3 -c "import json,sys; print('%.2e' % (json.load(sys.stdin)['distance']['rms'] / $diag))" 2>/dev/null)
+        rms=$($BIN eval "$OUT/s.ply" --truth "data/meshes/$m" --json 2>/dev/null | python3 -c "import json,sys; print('%.2e' % (json.load(sys.stdin)['evaluation']['distance']['rms'] / $diag))" 2>/dev/null)
         printf "%-12s %6s %4s %5s %7s %s %10s\n" "$name" "$spacing" $seed 0 "$samples" "$(stat "$OUT/s.stats.json")" "$rms"
       else
         printf "%-12s %6s %4s %5s %7s  %s\n" "$name" "$spacing" $seed $code "$samples" "$(grep -v '^warning' "$OUT/s.log" | head -1 | cut -c1-100)"

@@ -136,6 +136,8 @@ fn raw_sketches_never_give_a_surface_far_outside_the_strokes() {
 /// naming the patch: the raw `flower`'s patch 10 (a cycle the choice got wrong) stopped the
 /// run; now it surfaces, no patch farther out than the reach allows, and the coverage (above
 /// half of the strokes, or the run would be an error) is measured against the strokes as drawn.
+/// What consolidation did to the strokes before the first try is reported as in a run without
+/// a retry: its counts and seconds in the statistics, its warnings first.
 #[test]
 fn a_sketch_patch_that_runs_away_is_left_open() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/sketches/raw/flower.obj");
@@ -147,4 +149,8 @@ fn a_sketch_patch_that_runs_away_is_left_open() {
     let coverage = s.stats.coverage.expect("measured");
     eprintln!("flower: coverage {coverage:.2}, reach {:.2}", s.stats.reach);
     assert!(coverage >= curvenet::pipeline::coverage::MIN_COVERAGE);
+    let c = s.stats.consolidation.as_ref().expect("the consolidation's report survives the retry");
+    assert!(c.joined > 0 && c.trimmed > 0, "{c:?}");
+    assert!(s.stats.timings.consolidate > 0.0);
+    assert!(s.warnings[0].message.starts_with("consolidation: "), "{}", s.warnings[0]);
 }

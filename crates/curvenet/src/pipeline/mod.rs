@@ -56,10 +56,17 @@ pub fn surface_with_progress(
     // sketch surfaced again, a few times at most; a network with normals or cycles of its own
     // keeps the error (docs/design.md §15).
     let retry = network.cycles.is_none() && infer::needs_inference(network, options);
+    // Consolidated once: a retry surfaces the consolidated network with its cycles (which
+    // consolidation leaves as they are), and its result carries this report.
+    let mut consolidated = consolidate(network, options, progress)?;
     let mut current = Cow::Borrowed(network);
     let mut opened: Vec<(usize, String)> = Vec::new();
     loop {
-        match surface_as(&current, network, options, progress) {
+        let attempt = match (&consolidated, opened.is_empty()) {
+            (Some(c), true) if c.changed() => &c.network,
+            _ => &*current,
+        };
+        match surface_as(attempt, network, options, progress) {
             Err(e) if retry && opened.len() < MAX_OPENED && is_runaway(&e).is_some() => {
                 let patch = is_runaway(&e).unwrap_or(0);
                 // A patch past the cycles (a lone loop's disk) cannot be left open: the error stands.
@@ -82,6 +89,9 @@ pub fn surface_with_progress(
                         .patch(*patch),
                     );
                 }
+                if let Some(c) = consolidated.take() {
+                    add_consolidation(&mut s, c);
+                }
                 return Ok(s);
             }
         }
@@ -99,16 +109,14 @@ fn is_runaway(e: &crate::Error) -> Option<usize> {
     }
 }
 
-/// [`surface_with_progress`] once: `network` surfaced, its coverage measured against
-/// `original` (the strokes as given).
+/// [`surface_with_progress`] once: `network` (consolidated, or with its cycles) surfaced, its
+/// coverage measured against `original` (the strokes as given).
 fn surface_as(
     network: &Network,
     original: &Network,
     options: &Options,
     progress: &mut dyn FnMut(&str, f64, &str),
 ) -> Result<Surface> {
-    let consolidated = consolidate(network, options, progress)?;
-    let network = consolidated.as_ref().filter(|c| c.changed()).map_or(network, |c| &c.network);
     let (inferred, prepared) = infer::infer_and_prepare(network, options, progress)?;
     if let Some(r) = inferred.as_ref().map(|i| &i.report) {
         progress("normals", r.seconds, &format!("{} curves inferred", r.curves));
@@ -116,8 +124,7 @@ fn surface_as(
     let explain = |e| if inferred.is_some() { infer::explain(e) } else { e };
     let base = prepared.timings;
     let mut surface = solve::solve_prepared(Cow::Owned(prepared), options, progress, None, base).map_err(explain)?;
-    let changed = consolidated.as_ref().is_some_and(|c| c.changed());
-    if inferred.is_some() || changed || !surface.warnings.is_empty() || !std::ptr::eq(network, original) {
+    if inferred.is_some() || !surface.warnings.is_empty() || !std::ptr::eq(network, original) {
         let mut warnings = Vec::new();
         let clock = crate::solve::timing::Instant::now();
         surface.stats.coverage = Some(coverage::check_coverage(&surface.mesh, original, &mut warnings)?);
@@ -129,9 +136,6 @@ fn surface_as(
     }
     if let Some(i) = inferred {
         infer::add_to_surface(&mut surface, &i.report, &i.warnings);
-    }
-    if let Some(c) = consolidated {
-        add_consolidation(&mut surface, c);
     }
     Ok(surface)
 }
