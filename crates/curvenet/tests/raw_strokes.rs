@@ -136,8 +136,8 @@ fn raw_sketches_never_give_a_surface_far_outside_the_strokes() {
 /// naming the patch: the raw `flower`'s patch 10 (a cycle the choice got wrong) stopped the
 /// run; now it surfaces, no patch farther out than the reach allows, and the coverage (above
 /// half of the strokes, or the run would be an error) is measured against the strokes as drawn.
-/// What consolidation did to the strokes before the first try is reported as in a run without
-/// a retry: its counts and seconds in the statistics, its warnings first.
+/// What consolidation and the normal inference did before the first try is reported as in a
+/// run without a retry: their counts and seconds in the statistics, their warnings first.
 #[test]
 fn a_sketch_patch_that_runs_away_is_left_open() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/sketches/raw/flower.obj");
@@ -153,4 +153,6 @@ fn a_sketch_patch_that_runs_away_is_left_open() {
     assert!(c.joined > 0 && c.trimmed > 0, "{c:?}");
     assert!(s.stats.timings.consolidate > 0.0);
     assert!(s.warnings[0].message.starts_with("consolidation: "), "{}", s.warnings[0]);
+    let inferred = s.stats.inferred_normals.as_ref().expect("the inference's report survives the retry");
+    assert!(inferred.curves > 0 && s.stats.timings.normals > 0.0, "{inferred:?}");
 }

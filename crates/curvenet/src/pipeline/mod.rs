@@ -61,12 +61,14 @@ pub fn surface_with_progress(
     let mut consolidated = consolidate(network, options, progress)?;
     let mut current = Cow::Borrowed(network);
     let mut opened: Vec<(usize, String)> = Vec::new();
+    // What the first normal inference reported (a retry's network carries the normals).
+    let mut inference = None;
     loop {
         let attempt = match (&consolidated, opened.is_empty()) {
             (Some(c), true) if c.changed() => &c.network,
             _ => &*current,
         };
-        match surface_as(attempt, network, options, progress) {
+        match surface_as(attempt, network, options, progress, &mut inference) {
             Err(e) if retry && opened.len() < MAX_OPENED && is_runaway(&e).is_some() => {
                 let patch = is_runaway(&e).unwrap_or(0);
                 // A patch past the cycles (a lone loop's disk) cannot be left open: the error stands.
@@ -89,6 +91,9 @@ pub fn surface_with_progress(
                         .patch(*patch),
                     );
                 }
+                if let Some((report, warnings)) = inference.take() {
+                    infer::add_to_surface(&mut s, &report, &warnings);
+                }
                 if let Some(c) = consolidated.take() {
                     add_consolidation(&mut s, c);
                 }
@@ -109,15 +114,24 @@ fn is_runaway(e: &crate::Error) -> Option<usize> {
     }
 }
 
+/// What a normal inference reported: its statistics and warnings.
+type Inference = (InferredNormals, Vec<crate::error::Warning>);
+
 /// [`surface_with_progress`] once: `network` (consolidated, or with its cycles) surfaced, its
-/// coverage measured against `original` (the strokes as given).
+/// coverage measured against `original` (the strokes as given). The report of a normal
+/// inference goes to `inference` when that holds none yet (the caller adds it to the surface:
+/// a retry's network carries the inferred normals, and its run infers none).
 fn surface_as(
     network: &Network,
     original: &Network,
     options: &Options,
     progress: &mut dyn FnMut(&str, f64, &str),
+    inference: &mut Option<Inference>,
 ) -> Result<Surface> {
     let (inferred, prepared) = infer::infer_and_prepare(network, options, progress)?;
+    if let (Some(i), None) = (&inferred, &inference) {
+        *inference = Some((i.report.clone(), i.warnings.clone()));
+    }
     if let Some(r) = inferred.as_ref().map(|i| &i.report) {
         progress("normals", r.seconds, &format!("{} curves inferred", r.curves));
     }
@@ -133,9 +147,6 @@ fn surface_as(
         warnings.extend(open);
         surface.stats.timings.total += crate::solve::timing::seconds_since(clock);
         surface.warnings.extend(warnings);
-    }
-    if let Some(i) = inferred {
-        infer::add_to_surface(&mut surface, &i.report, &i.warnings);
     }
     Ok(surface)
 }
