@@ -219,9 +219,20 @@ fn fine_level(
 ) -> Result<Stage> {
     let d = match size {
         Some((size, target)) => {
-            // The vertex count follows the flattened domains' area, not the projections'.
-            let total: f64 =
-                coarse.flat.iter().zip(&size.patch_areas).map(|(f, a)| f.as_ref().map_or(*a, |f| f.area)).sum();
+            // The vertex count follows the flattened domains' area, not the projections'; a
+            // patch that keeps its planar domain (a fold-over's fallback: the plane of its
+            // vector area, or an ellipse its border is mapped onto) is tessellated again in the
+            // domain the coarse level covered, which can be several times its vector area (the
+            // raw `vacuum`: five such patches, 36.8k vertices for 20k asked).
+            let covered = interior_vertices_per_patch(&coarse.mesh, coarse.flat.len());
+            let per_vertex = coarse.spacing * coarse.spacing / VERTICES_PER_AREA;
+            let total: f64 = coarse
+                .flat
+                .iter()
+                .zip(&size.patch_areas)
+                .zip(&covered)
+                .map(|((f, a), &n)| f.as_ref().map_or_else(|| a.max(n as f64 * per_vertex), |f| f.area))
+                .sum();
             SizeModel { area: VERTICES_PER_AREA * total, ..size.clone() }.spacing(target)
         }
         None => d,
@@ -261,4 +272,22 @@ fn fine_level(
     let coarse =
         transfer.then(|| CoarseLevel { vertices: coarse.mesh.num_vertices(), updates: coarse.updates.clone(), system });
     Ok((mesh, seams, d, segment_layout(&topo.g, &res), coarse))
+}
+
+/// Per patch of `mesh` (`patches` of them): its free vertices (those not on curves; each lies
+/// in one patch).
+fn interior_vertices_per_patch(mesh: &crate::geom::mesh::Mesh, patches: usize) -> Vec<usize> {
+    let mut count = vec![0usize; patches];
+    let mut seen = vec![false; mesh.positions.len()];
+    for (f, &p) in mesh.faces.iter().zip(&mesh.face_patch) {
+        for &v in f {
+            let v = v as usize;
+            if v >= mesh.num_curve && !std::mem::replace(&mut seen[v], true) {
+                if let Some(c) = count.get_mut(p as usize) {
+                    *c += 1;
+                }
+            }
+        }
+    }
+    count
 }
