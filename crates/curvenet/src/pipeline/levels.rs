@@ -224,7 +224,12 @@ fn fine_level(
             // vector area, or an ellipse its border is mapped onto) is tessellated again in the
             // domain the coarse level covered, which can be several times its vector area (the
             // raw `vacuum`: five such patches, 36.8k vertices for 20k asked).
-            let covered = interior_vertices_per_patch(&coarse.mesh, coarse.flat.len());
+            let mut covered = vec![0usize; coarse.flat.len()];
+            for p in coarse.mesh.free_vertex_patches() {
+                if let Some(n) = covered.get_mut(p as usize) {
+                    *n += 1;
+                }
+            }
             let per_vertex = coarse.spacing * coarse.spacing / VERTICES_PER_AREA;
             let total: f64 = coarse
                 .flat
@@ -272,22 +277,4 @@ fn fine_level(
     let coarse =
         transfer.then(|| CoarseLevel { vertices: coarse.mesh.num_vertices(), updates: coarse.updates.clone(), system });
     Ok((mesh, seams, d, segment_layout(&topo.g, &res), coarse))
-}
-
-/// Per patch of `mesh` (`patches` of them): its free vertices (those not on curves; each lies
-/// in one patch).
-fn interior_vertices_per_patch(mesh: &crate::geom::mesh::Mesh, patches: usize) -> Vec<usize> {
-    let mut count = vec![0usize; patches];
-    let mut seen = vec![false; mesh.positions.len()];
-    for (f, &p) in mesh.faces.iter().zip(&mesh.face_patch) {
-        for &v in f {
-            let v = v as usize;
-            if v >= mesh.num_curve && !std::mem::replace(&mut seen[v], true) {
-                if let Some(c) = count.get_mut(p as usize) {
-                    *c += 1;
-                }
-            }
-        }
-    }
-    count
 }
