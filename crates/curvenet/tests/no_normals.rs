@@ -105,6 +105,44 @@ fn sketches_without_normals_surface_through_their_strokes() {
     }
 }
 
+/// The neatened `flower` (issue 30): six petals, each a closed stroke that touches the rest at
+/// one of the flower's two centres only, in a plane of its own. One node normal cannot serve
+/// them (the run stopped on a normal that turned by 135° along a petal); each petal is now a
+/// sheet of its own — tagged boundary by the inference, kept apart by node finding — with a
+/// vertex of its own at the centre, and lies on the surface.
+#[test]
+fn a_flowers_petals_are_sheets_of_their_own() {
+    use curvenet::metrics::MeshDistance;
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/sketches/flower.obj");
+    let net = curvenet::io::read_network(&path).unwrap();
+    let s = surface(&net, &Options::default()).unwrap_or_else(|e| panic!("flower: {e}"));
+    assert!(curvenet::geom::mesh::bad_edge(&s.mesh.faces).is_none(), "flower: not manifold");
+    let petals: Vec<&str> = s
+        .warnings
+        .iter()
+        .map(|w| w.message.as_str())
+        .filter(|m| m.contains("closed boundary curves that touch the network at one place only"))
+        .collect();
+    assert_eq!(petals.len(), 2, "{petals:?}");
+    assert!(petals.iter().all(|m| m.matches("curve at line").count() >= 3), "{petals:?}");
+    let diag = net.bounding_box().diagonal();
+    let d = MeshDistance::new(&s.mesh.positions, &s.mesh.faces);
+    let loops: Vec<&curvenet::Curve> = net.curves.iter().filter(|c| c.closed).collect();
+    assert_eq!(loops.len(), 6);
+    for c in loops {
+        let far = c.points.iter().map(|p| d.closest(*p).0).fold(0.0, f64::max);
+        assert!(far <= 2e-3 * diag, "a petal {:?} is {:.2e} of the diagonal from the surface", c.name, far / diag);
+    }
+    // A vertex per petal at each centre: the mesh's vertices there are several.
+    for m in &petals {
+        let at = m.split("near (").nth(1).and_then(|r| r.split(')').next()).unwrap();
+        let p: Vec<f64> = at.split(", ").map(|x| x.parse().unwrap()).collect();
+        let p = DVec3::new(p[0], p[1], p[2]);
+        let close = s.mesh.positions.iter().filter(|q| q.distance(p) <= 1e-3 * diag).count();
+        assert!(close >= 3, "{close} vertices near {p}");
+    }
+}
+
 /// A closed curve through `f(2πk/n)`, `k < n`, with normals `g` (the truth's).
 fn closed(n: usize, f: impl Fn(f64) -> DVec3, g: impl Fn(DVec3) -> DVec3, boundary: bool) -> curvenet::Curve {
     let points: Vec<DVec3> = (0..n).map(|k| f(std::f64::consts::TAU * k as f64 / n as f64)).collect();

@@ -307,6 +307,7 @@ fn infer(network: &Network, options: &Options, search: bool) -> Result<Inferred>
     }
     let snap = options.mesh.snap.or(net.snap).unwrap_or_else(|| net.snap_tolerance());
     let mut left_out = 0;
+    let validation_warnings = warnings.len();
     let mut g = loop {
         let mut work = net.clone();
         for (c, k) in work.curves.iter_mut().zip(&known) {
@@ -331,6 +332,7 @@ fn infer(network: &Network, options: &Options, search: bool) -> Result<Inferred>
             Err(e) => return Err(e),
         }
     };
+    let left_out_warnings = warnings[validation_warnings..].to_vec();
     let splines = fit_splines(&g);
     let orient = orient_graph(&mut g, &splines, &known)?;
     fill_gaps(&mut g, &known);
@@ -374,6 +376,19 @@ fn infer(network: &Network, options: &Options, search: bool) -> Result<Inferred>
             find_patches_open(&mut trimmed, &splines)?.0
         }
     };
+    // Petals: the network again with them tagged as the borders of sheets of their own, which
+    // node finding keeps apart (a normal of their own where they touch the others).
+    let petals = petals(&g, &trimmed, &patches, &known);
+    if let Some(mut again) = with_petals_apart(&net, &petals, snap, options, search) {
+        // The strokes left out as duplicates on the first pass stay out: say so again.
+        let mut w = left_out_warnings;
+        let new: Vec<Warning> = again.warnings.into_iter().filter(|x| !w.contains(x)).collect();
+        w.extend(new);
+        again.warnings = w;
+        again.report.left_out += left_out;
+        again.report.seconds = seconds_since(start);
+        return Ok(again);
+    }
     let mut network = with_graph_normals(&net, &g, &known);
     for &c in &lone {
         network.curves[c].boundary = true;
@@ -469,6 +484,64 @@ fn follow_chosen_cycles(
     }
     let repaired = crate::topology::orient::follow_patches(g, splines, known, &ends);
     Ok((repaired, Some(choice.keys(&trimmed)), seconds_since(clock)))
+}
+
+/// [`infer`] again on `net` with the curves `petals` tagged as boundary curves, so that node
+/// finding keeps them apart as sheets of their own (`snap` kept); `None` without petals or
+/// when that fails (the first pass stands).
+fn with_petals_apart(net: &Network, petals: &[usize], snap: f64, options: &Options, search: bool) -> Option<Inferred> {
+    if petals.is_empty() {
+        return None;
+    }
+    let mut tagged = net.clone();
+    for &c in petals {
+        tagged.curves[c].boundary = true;
+    }
+    tagged.snap = Some(snap);
+    infer(&tagged, options, search).ok()
+}
+
+/// The petals among `patches` (on `trimmed`, `g` with its dangling parts left out): inferred
+/// closed curves that `g` splits at one node only, a node where two segment ends of other
+/// curves of `g` meet at least, and that bound one patch alone on one side only — a sheet
+/// that touches the rest of the network at one place (the petals at a flower's centre). One node normal cannot serve
+/// petals in different planes: they are surfaced as sheets of their own
+/// ([`crate::topology::find_nodes`] keeps a closed boundary curve that touches the others at
+/// one place apart).
+fn petals(g: &Graph, trimmed: &Graph, patches: &[Patch], known: &[bool]) -> Vec<usize> {
+    let mut segments_of = vec![0usize; g.curves.len()];
+    g.segments.iter().for_each(|s| segments_of[s.curve] += 1);
+    // Segment ends at each node of `g` (`trimmed` numbers its nodes anew).
+    let in_g = segment_places(g);
+    let mut valence = vec![0usize; g.nodes.len()];
+    let mut uses = vec![0usize; trimmed.segments.len()];
+    for s in &g.segments {
+        valence[s.start] += 1;
+        valence[s.end] += 1;
+    }
+    patches.iter().flat_map(|p| p.half_edges()).for_each(|h| uses[h.segment] += 1);
+    let mut out: Vec<usize> = patches
+        .iter()
+        .filter_map(|p| match p {
+            Patch::Disk(hs) if hs.len() == 1 => {
+                let s = &trimmed.segments[hs[0].segment];
+                let c = s.curve;
+                let node = in_g.get(&(c, s.first, s.last)).map(|&k| g.segments[k].start);
+                let petal = s.start == s.end
+                    && !s.boundary
+                    && !known[c]
+                    && trimmed.curves[c].closed
+                    && segments_of[c] == 1
+                    && uses[hs[0].segment] == 1
+                    && node.is_some_and(|v| valence[v] >= 4);
+                petal.then_some(c)
+            }
+            _ => None,
+        })
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out
 }
 
 /// The cycles `keys` as disk patches of `g`; `None` when one of them is not on `g`.

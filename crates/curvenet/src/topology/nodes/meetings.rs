@@ -5,7 +5,7 @@
 
 use super::contacts::{Hit, Loc, Polylines};
 use super::{Node, OVERLAP_PROBE, SAME_MEETING};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Warning};
 use crate::geom::{fmt_point, DVec3};
 
 /// One passage of a curve through a meeting: `(curve, arc position, location)`.
@@ -15,7 +15,8 @@ pub(super) type Passage = (usize, f64, Loc);
 pub(super) type OnCurve = Vec<Vec<(f64, usize)>>;
 
 /// The nodes of the meetings `clusters` (lists of indices into `hits`), in cluster order, and
-/// where they lie on each curve.
+/// where they lie on each curve, with a warning per closed boundary curve taken as a sheet of
+/// its own ([`own_sheets`]).
 ///
 /// Errors ([`Error::Input`]): curves that overlap ([`passages`], [`check_overlap`]), curves
 /// whose normals disagree in orientation ([`meeting_node`]).
@@ -24,14 +25,51 @@ pub(super) fn meeting_nodes(
     hits: &[Hit],
     clusters: &[Vec<usize>],
     snap: f64,
-) -> Result<(Vec<Node>, OnCurve)> {
+) -> Result<(Vec<Node>, OnCurve, Vec<Warning>)> {
+    let mut all = Vec::with_capacity(clusters.len());
+    for cluster in clusters {
+        let passages = passages(lines, hits, cluster, snap)?;
+        check_overlap(lines, &passages, snap)?;
+        all.push(passages);
+    }
+    let own = own_sheets(lines, &all, snap);
+    let mut warnings = Vec::new();
     // Each cluster becomes a node; each distinct passage of a curve through it a node sample.
     let mut nodes: Vec<Node> = Vec::new();
     // Per curve: (arc position, node id).
     let mut on_curve: OnCurve = vec![Vec::new(); lines.curves.len()];
-    for cluster in clusters {
-        let passages = passages(lines, hits, cluster, snap)?;
-        check_overlap(lines, &passages, snap)?;
+    for mut passages in all {
+        let before = passages.len();
+        let apart: Vec<Passage> = passages.iter().filter(|p| own[p.0]).copied().collect();
+        passages.retain(|p| !own[p.0]);
+        if let Some(&(_, _, loc)) = apart.first() {
+            let mut others: Vec<&str> = passages.iter().map(|p| lines.labels[p.0].as_str()).collect();
+            others.dedup();
+            let names: Vec<&str> = apart.iter().map(|p| lines.labels[p.0].as_str()).collect();
+            warnings.push(
+                Warning::new(format!(
+                    "{} {} closed boundary {} that {} the network at one place only (near {}{}): taken as the \
+                     border{} of {} of {} own that {} the others there (petals; the mesh has a vertex of its own \
+                     for each at the contact)",
+                    names.join(", "),
+                    if names.len() > 1 { "are" } else { "is a" },
+                    if names.len() > 1 { "curves" } else { "curve" },
+                    if names.len() > 1 { "touch" } else { "touches" },
+                    fmt_point(lines.point_at(loc)),
+                    if others.is_empty() { String::new() } else { format!(", on {}", others.join(", ")) },
+                    if names.len() > 1 { "s" } else { "" },
+                    if names.len() > 1 { "sheets" } else { "a sheet" },
+                    if names.len() > 1 { "their" } else { "its" },
+                    if names.len() > 1 { "touch" } else { "touches" },
+                ))
+                .curve(apart[0].0),
+            );
+        }
+        // A meeting whose other side was such a sheet only is no node (a curve's end node is
+        // added with the ends).
+        if passages.is_empty() || (passages.len() < 2 && passages.len() < before) {
+            continue;
+        }
         let node = meeting_node(lines, &passages)?;
         let id = nodes.len();
         nodes.push(node);
@@ -39,7 +77,46 @@ pub(super) fn meeting_nodes(
             on_curve[p.0].push((p.1, id));
         }
     }
-    Ok((nodes, on_curve))
+    Ok((nodes, on_curve, warnings))
+}
+
+/// Per curve: whether it is a sheet of its own ([CG] assumes one tangent plane per node; the
+/// petals of a sketched flower touch at its centre in planes of their own): a closed curve
+/// tagged boundary that passes through exactly one meeting, once, where the other curves make
+/// a node of their own (two curve ends there at least: a curve through it, or two ending; a
+/// single stroke that ends on a loop is a stroke into a hole, which stays on it). Such a curve
+/// bounds a patch of its own; at the meeting it makes no node with the others, so that its
+/// disk keeps its own normal there. Normal inference tags petals so
+/// (`pipeline::infer::petals`, the same count of ends).
+fn own_sheets(lines: &Polylines, all: &[Vec<Passage>], snap: f64) -> Vec<bool> {
+    let mut count = vec![0usize; lines.curves.len()];
+    for passages in all {
+        for p in passages {
+            count[p.0] += 1;
+        }
+    }
+    let candidate: Vec<bool> =
+        lines.curves.iter().zip(&count).map(|(c, &n)| c.closed && c.boundary && n == 1).collect();
+    let mut own = vec![false; lines.curves.len()];
+    for passages in all {
+        // Curve ends of the others there: 2 for a passage through, 1 at an open curve's end.
+        let ends: usize = passages
+            .iter()
+            .filter(|p| !candidate[p.0])
+            .map(|p| {
+                let at_end = !lines.curves[p.0].closed && (p.1 <= snap || p.1 >= lines.total(p.0) - snap);
+                if at_end {
+                    1
+                } else {
+                    2
+                }
+            })
+            .sum();
+        if ends >= 2 {
+            passages.iter().filter(|p| candidate[p.0]).for_each(|p| own[p.0] = true);
+        }
+    }
+    own
 }
 
 /// The passages of the curves through one meeting (the contacts `cluster` of `hits`): per

@@ -132,15 +132,15 @@ impl Graph {
 /// `snap` is the snapping tolerance (a distance). Errors ([`crate::Error::Input`], naming the
 /// curve and a point): curves that overlap (run within the tolerance of each other over a
 /// stretch longer than a few tolerances), curves whose normals disagree in orientation at a
-/// node, and two nodes that land on one point of a curve. The warnings are empty for now.
+/// node, and two nodes that land on one point of a curve. The warnings name the closed boundary
+/// curves that touch the network at one place only, taken as sheets of their own.
 pub fn find_nodes(net: &Network, snap: f64) -> Result<(Graph, Vec<Warning>)> {
     let curves = &net.curves;
     let labels: Vec<String> = crate::network::curve_labels(curves);
-    let warnings = Vec::new();
     let lines = Polylines::new(curves, &labels);
     let hits = find_contacts(&lines, snap)?;
     let clusters = cluster_contacts(&lines, &hits, snap);
-    let (mut nodes, mut on_curve) = meeting_nodes(&lines, &hits, &clusters, snap)?;
+    let (mut nodes, mut on_curve, warnings) = meeting_nodes(&lines, &hits, &clusters, snap)?;
     add_end_nodes(&lines, &mut nodes, &mut on_curve, snap);
     // Insert the nodes into the curves.
     let split: Vec<SplitCurve> =

@@ -36,7 +36,8 @@ fn a_crossing_is_one_passage_per_curve_and_one_node() {
     let node = meeting_node(&lines, &p).unwrap();
     assert!(node.position.length() < 1e-12);
     assert_eq!(node.normal, DVec3::Z);
-    let (nodes, on_curve) = meeting_nodes(&lines, &hits, &clusters, 0.01).unwrap();
+    let (nodes, on_curve, warnings) = meeting_nodes(&lines, &hits, &clusters, 0.01).unwrap();
+    assert!(warnings.is_empty());
     assert_eq!(nodes, vec![node]);
     assert_eq!(on_curve, vec![vec![(1.0, 0)], vec![(1.0, 0)]]);
 }
@@ -55,6 +56,68 @@ fn parallel_curves_within_the_tolerance_overlap() {
     let clusters = cluster_contacts(&lines, &hits, 0.01);
     let Err(e) = meeting_nodes(&lines, &hits, &clusters, 0.01) else { panic!("accepted") };
     assert!(e.to_string().contains("runs within the snapping tolerance"), "{e}");
+}
+
+/// A petal: a closed loop in the xz plane (normals −y) whose seam touches a crossing of two
+/// lines in the xy plane (normals +z, 90° from the petal's and more than 90° from its flipped
+/// side). Untagged, the loop is one more passage of the node (its normal in the node's mean);
+/// tagged boundary, it is a sheet of its own: the node keeps the two lines only, with their
+/// normal, and a warning names the loop. A loop through two meetings stays in both.
+#[test]
+fn a_closed_boundary_curve_touching_at_one_place_is_a_sheet_of_its_own() {
+    let petal: Vec<[f64; 3]> = (0..24)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / 24.0;
+            [0.5 * t.sin(), 0.0, 0.5 - 0.5 * t.cos()]
+        })
+        .collect();
+    let mut loop_ = line(&petal, -DVec3::Y);
+    loop_.closed = true;
+    let cross = [
+        line(&[[-1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], DVec3::Z),
+        line(&[[0.0, -1.0, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0]], DVec3::Z),
+    ];
+    let names = labels(3);
+    let run = |boundary: bool| {
+        let mut curves = cross.to_vec();
+        let mut l = loop_.clone();
+        l.boundary = boundary;
+        curves.push(l);
+        let lines = Polylines::new(&curves, &names);
+        let hits = find_contacts(&lines, 0.01).unwrap();
+        let clusters = cluster_contacts(&lines, &hits, 0.01);
+        meeting_nodes(&lines, &hits, &clusters, 0.01).unwrap()
+    };
+    let (nodes, on_curve, warnings) = run(false);
+    assert_eq!(nodes.len(), 1);
+    assert_eq!(on_curve[2].len(), 1);
+    assert!(nodes[0].normal.dot(DVec3::Z) < 0.99, "{}", nodes[0].normal);
+    assert!(warnings.is_empty());
+    let (nodes, on_curve, warnings) = run(true);
+    assert_eq!(nodes.len(), 1);
+    assert_eq!(nodes[0].normal, DVec3::Z);
+    assert!(on_curve[2].is_empty(), "{on_curve:?}");
+    assert_eq!(on_curve[0], vec![(1.0, 0)]);
+    assert_eq!(warnings.len(), 1);
+    assert!(
+        warnings[0].message.starts_with("curve 2 is a closed boundary curve that touches"),
+        "{}",
+        warnings[0].message
+    );
+    assert_eq!(warnings[0].at.curve, Some(2));
+    // The loop's top also on a third line: two meetings, a node at each.
+    let mut curves = cross.to_vec();
+    curves.push(line(&[[-1.0, 0.0, 1.0], [0.0, 0.0, 1.0], [1.0, 0.0, 1.0]], -DVec3::Y));
+    let mut l = loop_.clone();
+    l.boundary = true;
+    curves.push(l);
+    let names = labels(4);
+    let lines = Polylines::new(&curves, &names);
+    let hits = find_contacts(&lines, 0.01).unwrap();
+    let clusters = cluster_contacts(&lines, &hits, 0.01);
+    let (nodes, on_curve, warnings) = meeting_nodes(&lines, &hits, &clusters, 0.01).unwrap();
+    assert_eq!((nodes.len(), on_curve[3].len()), (2, 2));
+    assert!(warnings.is_empty());
 }
 
 #[test]
