@@ -133,6 +133,85 @@ pub(super) fn trim_retraces(d: &Dense, pieces: &mut [Piece], gap: f64) -> Vec<(u
     out
 }
 
+/// One end cut back where it ran along another stroke: the curve, the curve it ran along, where
+/// it ends now, and the length cut.
+pub(super) struct EndRun {
+    pub(super) curve: usize,
+    pub(super) along: usize,
+    pub(super) at: DVec3,
+    pub(super) length: f64,
+}
+
+/// Cuts back the ends of the open pieces that run along another stroke from where they meet it
+/// — within `tol` (the snapping tolerance) for at least `min_run` (more than node finding
+/// takes for one meeting) and at most two gaps (longer runs are overdraw's) — to where they
+/// part: a leaf's two outline strokes and its midrib that end at its tip and coincide over its
+/// last few samples, a stroke that ends on another and was drawn along it for a stretch. Node
+/// finding refuses such ends (curves that run within the tolerance of each other); cut back,
+/// each is an end near the other stroke, which the gap rule makes a junction on it. Shorter
+/// pieces are cut first (the longest keeps a shared tip); creases and boundary curves
+/// (`fixed`) are never cut, and what remains of a piece is at least as long as its cut and a
+/// gap. Returns the ends cut.
+pub(super) fn trim_end_runs(
+    d: &Dense,
+    pieces: &mut [Piece],
+    tol: f64,
+    min_run: f64,
+    gap: f64,
+    fixed: &[bool],
+) -> Vec<EndRun> {
+    let mut slots = Slots::new(d.pos.len(), pieces);
+    let lengths: Vec<f64> = pieces.iter().map(|p| p.length(d)).collect();
+    let mut order: Vec<usize> = (0..pieces.len()).collect();
+    order.sort_by(|&a, &b| lengths[a].total_cmp(&lengths[b]).then(a.cmp(&b)));
+    let mut out = Vec::new();
+    for p in order {
+        if pieces[p].closed || fixed[pieces[p].curve] {
+            continue;
+        }
+        for side in 0..2 {
+            let n = pieces[p].idx.len();
+            if n < 3 {
+                break;
+            }
+            let seq: Vec<usize> =
+                if side == 0 { pieces[p].idx.clone() } else { pieces[p].idx.iter().rev().copied().collect() };
+            let Some(first) = nearest_other(d, pieces, &slots, p, seq[0], tol) else { continue };
+            // The end's run along other strokes: the dense points within `tol` of one.
+            let mut k = 1;
+            while k < n
+                && d.along(seq[0], seq[k]) <= 2.0 * gap
+                && nearest_other(d, pieces, &slots, p, seq[k], tol).is_some()
+            {
+                k += 1;
+            }
+            let run = d.along(seq[0], seq[k - 1]);
+            let rest = lengths[p] - d.along(seq[0], seq[k.min(n - 1)]);
+            if k >= n - 1 || run < min_run || run > 2.0 * gap || rest < run.max(gap) {
+                continue;
+            }
+            // `seq[k]` becomes the end.
+            let cut: Vec<usize> = seq[..k].to_vec();
+            let piece = &mut pieces[p];
+            if side == 0 {
+                piece.idx.drain(..k);
+            } else {
+                piece.idx.truncate(n - k);
+            }
+            piece.changed = true;
+            slots.clear(&cut);
+            slots.set(pieces, p);
+            out.push(EndRun {
+                curve: pieces[p].curve,
+                along: pieces[first.piece].curve,
+                at: d.pos[seq[k]],
+                length: run,
+            });
+        }
+    }
+    out
+}
+
 /// The innermost turn `k` of `seq` (an end first, within `reach` of it along) after which the
 /// end's arm `seq[..k]` stays within `gap` of `seq[k..]`; `None` without one.
 fn retrace_turn(d: &Dense, seq: &[usize], gap: f64, reach: f64) -> Option<usize> {
@@ -361,12 +440,22 @@ fn window(d: &Dense, piece: &Piece, side: usize, gap: f64) -> Vec<usize> {
 /// The nearest point within `r` of dense point `i` (of piece `p`) on the other pieces' dense
 /// polylines, or on `p`'s own more than four `r` along it.
 fn nearest(d: &Dense, pieces: &[Piece], slots: &Slots, p: usize, i: usize, r: f64) -> Option<Near> {
+    nearest_beyond(d, pieces, slots, p, i, r, 4.0 * r)
+}
+
+/// [`nearest`] on the other pieces only.
+fn nearest_other(d: &Dense, pieces: &[Piece], slots: &Slots, p: usize, i: usize, r: f64) -> Option<Near> {
+    nearest_beyond(d, pieces, slots, p, i, r, f64::INFINITY)
+}
+
+/// [`nearest`], with `p`'s own points more than `own` along it.
+fn nearest_beyond(d: &Dense, pieces: &[Piece], slots: &Slots, p: usize, i: usize, r: f64, own: f64) -> Option<Near> {
     let x = d.pos[i];
     let mut best: Option<Near> = None;
     d.near(x, r + d.h, |j| {
         let Some((t, k)) = slots.0[j] else { return };
         let (t, k) = (t as usize, k as usize);
-        if t == p && d.along(i, j) <= 4.0 * r {
+        if t == p && d.along(i, j) <= own {
             return;
         }
         let idx = &pieces[t].idx;

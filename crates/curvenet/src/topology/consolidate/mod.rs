@@ -105,6 +105,16 @@ impl Consolidated {
     }
 }
 
+/// A stroke end that runs within this many snapping tolerances of another stroke from where it
+/// meets it is cut back to where they part ([`ends::trim_end_runs`]): node finding's
+/// tolerance, at which it refuses curves that stay together.
+pub const END_RUN_TOLERANCE: f64 = 1.0;
+/// ... when that run is at least this many snapping tolerances long: node finding refuses two
+/// curves still within the tolerance 5, 10 and 20 tolerances from their meeting (the dense
+/// points are a quarter gap apart, so a run measured at 15 reaches about 20); shorter runs are
+/// one meeting there, left as drawn.
+pub const END_RUN_MIN: f64 = 15.0;
+
 /// A stretch of a stroke being consolidated: dense points in order, an added point at either
 /// end (a junction on another stroke), and what happened to it.
 pub(super) struct Piece {
@@ -199,6 +209,7 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
     let mut pieces = od.pieces;
     let mut hooks = ends::trim_hooks(&d, &mut pieces, gap);
     hooks.extend(ends::trim_retraces(&d, &mut pieces, gap));
+    let runs = ends::trim_end_runs(&d, &mut pieces, END_RUN_TOLERANCE * snap, END_RUN_MIN * snap, gap, &fixed);
     let gaps = ends::close_gaps(&d, &mut pieces, gap, snap, &fixed);
     let junctions: Vec<DVec3> = gaps.joins.iter().map(|j| j.2).collect();
     let mut moved = od.moved;
@@ -212,6 +223,7 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
     if od.merges.is_empty()
         && od.dropped == 0
         && hooks.is_empty()
+        && runs.is_empty()
         && gaps.joins.is_empty()
         && gaps.stubs.is_empty()
         && crossings.is_empty()
@@ -222,12 +234,13 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
     let labels: Vec<String> = crate::network::curve_labels(&net.curves);
     let mut warnings = warnings(&labels, &od.merges, &hooks, &gaps, od.dropped, gap);
     warnings.extend(crossing_warning(&labels, &crossings, gap));
+    warnings.extend(end_run_warning(&labels, &runs, snap));
     let report = Consolidation {
         gap,
         joined: gaps.joins.len(),
         crossed: crossings.len(),
         merged: od.merges.len(),
-        trimmed: hooks.len() + gaps.stubs.len() + od.dropped,
+        trimmed: hooks.len() + runs.len() + gaps.stubs.len() + od.dropped,
         curves_in: net.curves.len(),
         curves_out: curves.len(),
         seconds: seconds_since(start),
@@ -235,6 +248,27 @@ pub fn consolidate(network: &Network, options: &ConsolidateOptions, snap: Option
     // The tolerance the strokes were consolidated with, also for node finding (the default
     // follows the mean sample spacing, which the changed strokes no longer have).
     Ok(Consolidated { network: Network { curves, snap: Some(snap), cycles: None }, report, warnings })
+}
+
+/// The warning for the ends cut back where they ran along another stroke (one for all).
+fn end_run_warning(labels: &[String], runs: &[ends::EndRun], snap: f64) -> Option<Warning> {
+    let first = runs.first()?;
+    let places: Vec<String> = runs
+        .iter()
+        .take(3)
+        .map(|r| format!("{} along {} to {} ({:.3e} cut)", labels[r.curve], labels[r.along], fmt_point(r.at), r.length))
+        .collect();
+    let more = if runs.len() > 3 { format!(" and {} more", runs.len() - 3) } else { String::new() };
+    Some(
+        Warning::new(format!(
+            "consolidation: {} stroke end(s) that ran along another stroke from where they meet it (within {:.3e}, \
+             a sharp tip or a stroke drawn along another) were cut back to where they part: {}{more}",
+            runs.len(),
+            END_RUN_TOLERANCE * snap,
+            places.join("; ")
+        ))
+        .curve(first.curve),
+    )
 }
 
 fn curve_length(c: &Curve) -> f64 {

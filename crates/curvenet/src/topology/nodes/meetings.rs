@@ -82,9 +82,9 @@ pub(super) fn meeting_nodes(
 
 /// Per curve: whether it is a sheet of its own ([CG] assumes one tangent plane per node; the
 /// petals of a sketched flower touch at its centre in planes of their own): a closed curve
-/// tagged boundary that passes through exactly one meeting, once, where the other curves make
-/// a node of their own (two curve ends there at least: a curve through it, or two ending; a
-/// single stroke that ends on a loop is a stroke into a hole, which stays on it). Such a curve
+/// tagged boundary that passes through exactly one meeting, once, where the other curves have
+/// two curve ends at least (a curve through it, two ending, another petal; a single stroke
+/// that ends on a loop is a stroke into a hole, which stays on it). Such a curve
 /// bounds a patch of its own; at the meeting it makes no node with the others, so that its
 /// disk keeps its own normal there. Normal inference tags petals so
 /// (`pipeline::infer::petals`, the same count of ends).
@@ -99,21 +99,21 @@ fn own_sheets(lines: &Polylines, all: &[Vec<Passage>], snap: f64) -> Vec<bool> {
         lines.curves.iter().zip(&count).map(|(c, &n)| c.closed && c.boundary && n == 1).collect();
     let mut own = vec![false; lines.curves.len()];
     for passages in all {
-        // Curve ends of the others there: 2 for a passage through, 1 at an open curve's end.
-        let ends: usize = passages
-            .iter()
-            .filter(|p| !candidate[p.0])
-            .map(|p| {
-                let at_end = !lines.curves[p.0].closed && (p.1 <= snap || p.1 >= lines.total(p.0) - snap);
-                if at_end {
-                    1
-                } else {
-                    2
-                }
-            })
-            .sum();
-        if ends >= 2 {
-            passages.iter().filter(|p| candidate[p.0]).for_each(|p| own[p.0] = true);
+        // Curve ends there: 2 for a passage through, 1 at an open curve's end.
+        let ends = |p: &Passage| {
+            let at_end = !lines.curves[p.0].closed && (p.1 <= snap || p.1 >= lines.total(p.0) - snap);
+            if at_end {
+                1
+            } else {
+                2
+            }
+        };
+        let all_ends: usize = passages.iter().map(ends).sum();
+        for p in passages.iter().filter(|p| candidate[p.0]) {
+            // The others' ends: those of every passage but this one (other petals among them).
+            if all_ends - ends(p) >= 2 {
+                own[p.0] = true;
+            }
         }
     }
     own

@@ -335,3 +335,40 @@ fn a_graph_whose_ends_meet_keeps_its_free_ends_free() {
     assert_eq!(c.report.joined, 0, "{:?}", c.report);
     assert!(!c.changed(), "{:?}", c.report);
 }
+
+/// A sharp tip (a leaf's two outline strokes drawn to one point): stroke 1 leaves stroke 0's
+/// end along it, within a third of the snapping tolerance for 40 tolerances, then parts at 20°.
+/// Node finding refuses the strokes as drawn (they run within the tolerance of each other);
+/// consolidated, stroke 1's end is cut back to where they part and joined there, stroke 0's
+/// free end beside it with it (an L corner: the tip, shorter than the gap, is left out), and
+/// node finding takes the network. A stroke that ends on another and leaves it at an angle is
+/// left as drawn.
+#[test]
+fn an_end_that_runs_along_another_stroke_is_cut_back_to_where_they_part() {
+    let snap = 1e-4;
+    let a = line(DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0), 1001);
+    let mut tip: Vec<DVec3> =
+        (0..=40).map(|i| DVec3::new(1e-4 * i as f64, if i == 0 { 0.0 } else { 3e-5 }, 0.0)).collect();
+    let part = DVec3::new(20f64.to_radians().cos(), 20f64.to_radians().sin(), 0.0);
+    let from = tip[40];
+    tip.extend((1..=500).map(|i| from + part * (1e-3 * i as f64)));
+    let b = Curve { points: tip, ..Default::default() };
+    let raw = Network { curves: vec![a.clone(), b], snap: Some(snap), cycles: None };
+    let Err(e) = crate::topology::find_nodes(&raw, snap) else { panic!("node finding took the tip as drawn") };
+    assert!(e.to_string().contains("runs within the snapping tolerance"), "{e}");
+    let c = consolidate(&raw, &ConsolidateOptions { enabled: true, gap: Some(0.02) }, Some(snap)).unwrap();
+    assert!(c.warnings.iter().any(|w| w.message.contains("ran along another stroke")), "{:?}", c.warnings);
+    assert!(c.report.trimmed >= 1 && c.report.joined >= 1, "{:?}", c.report);
+    let (s0, s1) = (c.network.curves[0].points[0], c.network.curves[1].points[0]);
+    assert!(s0.distance(s1) <= snap, "{s0} {s1}");
+    assert!(s1.x >= 3e-3 && s1.x <= 0.02, "stroke 1 starts at {s1}");
+    // Stroke 0 past the corner as drawn.
+    let kept = &c.network.curves[0].points;
+    assert!(kept.len() > 900 && kept.last() == a.points.last(), "{} points", kept.len());
+    crate::topology::find_nodes(&c.network, snap).unwrap();
+    // A T drawn onto the line (shared point, leaving at 60°): nothing to do.
+    let t = line(DVec3::new(0.5, 0.0, 0.0), DVec3::new(0.5 + 0.5, 0.5 * 3f64.sqrt(), 0.0), 101);
+    let net = Network { curves: vec![a, t], snap: Some(snap), cycles: None };
+    let c = consolidate(&net, &ConsolidateOptions { enabled: true, gap: Some(0.02) }, Some(snap)).unwrap();
+    assert!(!c.changed(), "{:?}", c.report);
+}
