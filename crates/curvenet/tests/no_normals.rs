@@ -121,7 +121,7 @@ fn a_flowers_petals_are_sheets_of_their_own() {
         .warnings
         .iter()
         .map(|w| w.message.as_str())
-        .filter(|m| m.contains("closed boundary curves that touch the network at one place only"))
+        .filter(|m| m.contains("closed curves tagged boundary that touch the network at one place only"))
         .collect();
     assert_eq!(petals.len(), 2, "{petals:?}");
     assert!(petals.iter().all(|m| m.matches("curve at line").count() >= 3), "{petals:?}");

@@ -307,7 +307,6 @@ fn infer(network: &Network, options: &Options, search: bool) -> Result<Inferred>
     }
     let snap = options.mesh.snap.or(net.snap).unwrap_or_else(|| net.snap_tolerance());
     let mut left_out = 0;
-    let validation_warnings = warnings.len();
     let mut g = loop {
         let mut work = net.clone();
         for (c, k) in work.curves.iter_mut().zip(&known) {
@@ -332,7 +331,9 @@ fn infer(network: &Network, options: &Options, search: bool) -> Result<Inferred>
             Err(e) => return Err(e),
         }
     };
-    let left_out_warnings = warnings[validation_warnings..].to_vec();
+    // The validation's warnings and the strokes left out, which a second pass on the cleaned
+    // network would not give again.
+    let first_warnings = warnings.clone();
     let splines = fit_splines(&g);
     let orient = orient_graph(&mut g, &splines, &known)?;
     fill_gaps(&mut g, &known);
@@ -380,8 +381,7 @@ fn infer(network: &Network, options: &Options, search: bool) -> Result<Inferred>
     // node finding keeps apart (a normal of their own where they touch the others).
     let petals = petals(&g, &trimmed, &patches, &known);
     if let Some(mut again) = with_petals_apart(&net, &petals, snap, options, search) {
-        // The strokes left out as duplicates on the first pass stay out: say so again.
-        let mut w = left_out_warnings;
+        let mut w = first_warnings;
         let new: Vec<Warning> = again.warnings.into_iter().filter(|x| !w.contains(x)).collect();
         w.extend(new);
         again.warnings = w;
@@ -486,41 +486,59 @@ fn follow_chosen_cycles(
     Ok((repaired, Some(choice.keys(&trimmed)), seconds_since(clock)))
 }
 
-/// [`infer`] again on `net` with the curves `petals` tagged as boundary curves, so that node
-/// finding keeps them apart as sheets of their own (`snap` kept); `None` without petals or
-/// when that fails (the first pass stands).
-fn with_petals_apart(net: &Network, petals: &[usize], snap: f64, options: &Options, search: bool) -> Option<Inferred> {
-    if petals.is_empty() {
+/// [`infer`] again on `net` with the curves `petals` tagged as boundary curves, each with its
+/// first sample where it touches the others (`(curve, contact)`), so that node finding keeps
+/// them apart as sheets of their own (`snap` kept); `None` without petals, for a network with
+/// cycles given (they name its segments as they are), or when that fails (the first pass
+/// stands).
+fn with_petals_apart(
+    net: &Network,
+    petals: &[(usize, DVec3)],
+    snap: f64,
+    options: &Options,
+    search: bool,
+) -> Option<Inferred> {
+    if petals.is_empty() || net.cycles.is_some() {
         return None;
     }
     let mut tagged = net.clone();
-    for &c in petals {
-        tagged.curves[c].boundary = true;
+    for &(c, at) in petals {
+        let curve = &mut tagged.curves[c];
+        curve.boundary = true;
+        // The sample nearest the contact first (node finding looks for the touch at the seam).
+        let first = (0..curve.points.len())
+            .min_by(|&a, &b| curve.points[a].distance(at).total_cmp(&curve.points[b].distance(at)))
+            .unwrap_or(0);
+        curve.points.rotate_left(first);
+        for v in [&mut curve.normals, &mut curve.normals_right] {
+            if v.len() == curve.points.len() {
+                v.rotate_left(first);
+            }
+        }
     }
     tagged.snap = Some(snap);
     infer(&tagged, options, search).ok()
 }
 
-/// The petals among `patches` (on `trimmed`, `g` with its dangling parts left out): inferred
-/// closed curves that `g` splits at one node only, a node where two segment ends of other
-/// curves of `g` meet at least, and that bound one patch alone on one side only — a sheet
-/// that touches the rest of the network at one place (the petals at a flower's centre). One node normal cannot serve
-/// petals in different planes: they are surfaced as sheets of their own
+/// The petals among `patches` (on `trimmed`, `g` with its dangling parts left out), each with
+/// the point where it touches the others: inferred closed curves that `g` splits at one node
+/// only, a node where two other passages of curves of `g` meet at least, and that bound one
+/// patch alone on one side only — a sheet that touches the rest of the network at one place
+/// (the petals at a flower's centre). One node normal cannot serve petals in different
+/// planes: they are surfaced as sheets of their own
 /// ([`crate::topology::find_nodes`] keeps a closed boundary curve that touches the others at
 /// one place apart).
-fn petals(g: &Graph, trimmed: &Graph, patches: &[Patch], known: &[bool]) -> Vec<usize> {
+fn petals(g: &Graph, trimmed: &Graph, patches: &[Patch], known: &[bool]) -> Vec<(usize, DVec3)> {
     let mut segments_of = vec![0usize; g.curves.len()];
     g.segments.iter().for_each(|s| segments_of[s.curve] += 1);
-    // Segment ends at each node of `g` (`trimmed` numbers its nodes anew).
+    // Passages of curves through each node of `g` (`trimmed` numbers its nodes anew): node
+    // finding's count at the meeting.
     let in_g = segment_places(g);
-    let mut valence = vec![0usize; g.nodes.len()];
+    let mut passages = vec![0usize; g.nodes.len()];
+    g.curves.iter().flat_map(|c| c.nodes.iter()).for_each(|&(_, v)| passages[v] += 1);
     let mut uses = vec![0usize; trimmed.segments.len()];
-    for s in &g.segments {
-        valence[s.start] += 1;
-        valence[s.end] += 1;
-    }
     patches.iter().flat_map(|p| p.half_edges()).for_each(|h| uses[h.segment] += 1);
-    let mut out: Vec<usize> = patches
+    let mut out: Vec<(usize, DVec3)> = patches
         .iter()
         .filter_map(|p| match p {
             Patch::Disk(hs) if hs.len() == 1 => {
@@ -533,14 +551,14 @@ fn petals(g: &Graph, trimmed: &Graph, patches: &[Patch], known: &[bool]) -> Vec<
                     && trimmed.curves[c].closed
                     && segments_of[c] == 1
                     && uses[hs[0].segment] == 1
-                    && node.is_some_and(|v| valence[v] >= 4);
-                petal.then_some(c)
+                    && node.is_some_and(|v| passages[v] >= 3);
+                petal.then(|| (c, trimmed.nodes[s.start].position))
             }
             _ => None,
         })
         .collect();
-    out.sort_unstable();
-    out.dedup();
+    out.sort_by_key(|x| x.0);
+    out.dedup_by_key(|x| x.0);
     out
 }
 

@@ -178,16 +178,18 @@ pub(super) fn trim_end_runs(
                 if side == 0 { pieces[p].idx.clone() } else { pieces[p].idx.iter().rev().copied().collect() };
             let Some(first) = nearest_other(d, pieces, &slots, p, seq[0], tol) else { continue };
             // The end's run along other strokes: the dense points within `tol` of one.
+            let runs_on = |k: usize| nearest_other(d, pieces, &slots, p, seq[k], tol).is_some();
             let mut k = 1;
-            while k < n
-                && d.along(seq[0], seq[k]) <= 2.0 * gap
-                && nearest_other(d, pieces, &slots, p, seq[k], tol).is_some()
-            {
+            while k < n && d.along(seq[0], seq[k]) <= 2.0 * gap && runs_on(k) {
                 k += 1;
             }
-            let run = d.along(seq[0], seq[k - 1]);
-            let rest = lengths[p] - d.along(seq[0], seq[k.min(n - 1)]);
-            if k >= n - 1 || run < min_run || run > 2.0 * gap || rest < run.max(gap) {
+            // Still along past two gaps: overdraw's (or no end's), left to node finding.
+            if k >= n - 1 || runs_on(k) {
+                continue;
+            }
+            let (run, cut_length) = (d.along(seq[0], seq[k - 1]), d.along(seq[0], seq[k]));
+            let rest = pieces[p].length(d) - cut_length;
+            if run < min_run || rest < cut_length.max(gap) {
                 continue;
             }
             // `seq[k]` becomes the end.
@@ -205,7 +207,7 @@ pub(super) fn trim_end_runs(
                 curve: pieces[p].curve,
                 along: pieces[first.piece].curve,
                 at: d.pos[seq[k]],
-                length: run,
+                length: cut_length,
             });
         }
     }

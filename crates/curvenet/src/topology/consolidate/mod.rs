@@ -109,10 +109,12 @@ impl Consolidated {
 /// meets it is cut back to where they part ([`ends::trim_end_runs`]): node finding's
 /// tolerance, at which it refuses curves that stay together.
 pub const END_RUN_TOLERANCE: f64 = 1.0;
-/// ... when that run is at least this many snapping tolerances long: node finding refuses two
-/// curves still within the tolerance 5, 10 and 20 tolerances from their meeting (the dense
-/// points are a quarter gap apart, so a run measured at 15 reaches about 20); shorter runs are
-/// one meeting there, left as drawn.
+/// ... when that run, measured on the dense points (a quarter gap apart), is at least this many
+/// snapping tolerances long: node finding refuses two curves still within the tolerance 5, 10
+/// and 20 tolerances from their meeting; shorter runs are one meeting there, left as drawn.
+/// With the default gap (mostly 10–40 tolerances) a run of 20 is seen as 15 or more; with a
+/// gap over 60 tolerances the dense points may be too far apart to see it, and node finding's
+/// refusal stands.
 pub const END_RUN_MIN: f64 = 15.0;
 
 /// A stretch of a stroke being consolidated: dense points in order, an added point at either

@@ -48,19 +48,24 @@ pub(super) fn meeting_nodes(
             let names: Vec<&str> = apart.iter().map(|p| lines.labels[p.0].as_str()).collect();
             warnings.push(
                 Warning::new(format!(
-                    "{} {} closed boundary {} that {} the network at one place only (near {}{}): taken as the \
-                     border{} of {} of {} own that {} the others there (petals; the mesh has a vertex of its own \
-                     for each at the contact)",
+                    "{} {} closed {} tagged boundary that {} the network at one place only, at {} first sample \
+                     (near {}{}): taken as the border{} of {} of {} own (petals; the mesh has a vertex of its own \
+                     for each at the contact{})",
                     names.join(", "),
                     if names.len() > 1 { "are" } else { "is a" },
                     if names.len() > 1 { "curves" } else { "curve" },
                     if names.len() > 1 { "touch" } else { "touches" },
+                    if names.len() > 1 { "their" } else { "its" },
                     fmt_point(lines.point_at(loc)),
                     if others.is_empty() { String::new() } else { format!(", on {}", others.join(", ")) },
                     if names.len() > 1 { "s" } else { "" },
                     if names.len() > 1 { "sheets" } else { "a sheet" },
                     if names.len() > 1 { "their" } else { "its" },
-                    if names.len() > 1 { "touch" } else { "touches" },
+                    match passages.len() {
+                        0 => "; no node is left there",
+                        1 => "; the one stroke left there has no node there: it ends or passes on",
+                        _ => "",
+                    },
                 ))
                 .curve(apart[0].0),
             );
@@ -82,12 +87,13 @@ pub(super) fn meeting_nodes(
 
 /// Per curve: whether it is a sheet of its own ([CG] assumes one tangent plane per node; the
 /// petals of a sketched flower touch at its centre in planes of their own): a closed curve
-/// tagged boundary that passes through exactly one meeting, once, where the other curves have
-/// two curve ends at least (a curve through it, two ending, another petal; a single stroke
-/// that ends on a loop is a stroke into a hole, which stays on it). Such a curve
+/// tagged boundary that passes through exactly one meeting, once, at its seam (its first
+/// sample, within [`SAME_MEETING`] tolerances), where two other passages at least meet (other
+/// strokes, other petals; a single stroke that ends on a loop or crosses it is a stroke into a
+/// hole or across a border, which stays on it). Such a curve
 /// bounds a patch of its own; at the meeting it makes no node with the others, so that its
 /// disk keeps its own normal there. Normal inference tags petals so
-/// (`pipeline::infer::petals`, the same count of ends).
+/// (`pipeline::infer::petals`, the same count of passages).
 fn own_sheets(lines: &Polylines, all: &[Vec<Passage>], snap: f64) -> Vec<bool> {
     let mut count = vec![0usize; lines.curves.len()];
     for passages in all {
@@ -99,21 +105,16 @@ fn own_sheets(lines: &Polylines, all: &[Vec<Passage>], snap: f64) -> Vec<bool> {
         lines.curves.iter().zip(&count).map(|(c, &n)| c.closed && c.boundary && n == 1).collect();
     let mut own = vec![false; lines.curves.len()];
     for passages in all {
-        // Curve ends there: 2 for a passage through, 1 at an open curve's end.
-        let ends = |p: &Passage| {
-            let at_end = !lines.curves[p.0].closed && (p.1 <= snap || p.1 >= lines.total(p.0) - snap);
-            if at_end {
-                1
-            } else {
-                2
-            }
-        };
-        let all_ends: usize = passages.iter().map(ends).sum();
-        for p in passages.iter().filter(|p| candidate[p.0]) {
-            // The others' ends: those of every passage but this one (other petals among them).
-            if all_ends - ends(p) >= 2 {
-                own[p.0] = true;
-            }
+        // The loop touches the others at its seam (its first sample): where a petal is drawn
+        // from and back to (and where inference puts a petal's first sample).
+        let at_seam = |p: &Passage| lines.along(p.0, p.1, 0.0) <= SAME_MEETING * snap;
+        // Two other passages at least: a node of the others (a stroke that ends on a loop, or
+        // passes through it, is a stroke into a hole or across a border, which stays on it).
+        if passages.len() < 3 {
+            continue;
+        }
+        for p in passages.iter().filter(|p| candidate[p.0] && at_seam(p)) {
+            own[p.0] = true;
         }
     }
     own

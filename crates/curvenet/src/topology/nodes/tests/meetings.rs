@@ -100,7 +100,7 @@ fn a_closed_boundary_curve_touching_at_one_place_is_a_sheet_of_its_own() {
     assert_eq!(on_curve[0], vec![(1.0, 0)]);
     assert_eq!(warnings.len(), 1);
     assert!(
-        warnings[0].message.starts_with("curve 2 is a closed boundary curve that touches"),
+        warnings[0].message.starts_with("curve 2 is a closed curve tagged boundary that touches"),
         "{}",
         warnings[0].message
     );
