@@ -106,7 +106,7 @@ impl Consolidated {
 }
 
 /// A stroke end that runs within this many snapping tolerances of another stroke from where it
-/// meets it is cut back to where they part ([`ends::trim_end_runs`]): node finding's
+/// meets it is cut back to where they part (`ends::trim_end_runs`): node finding's
 /// tolerance, at which it refuses curves that stay together.
 pub const END_RUN_TOLERANCE: f64 = 1.0;
 /// ... when that run, measured on the dense points (a quarter gap apart), is at least this many
